@@ -1,0 +1,63 @@
+// A case folder (DESIGN.md §3): reads every dictionary into the object model.
+//
+//   case/system/controlDict.yaml    run controls        (ControlDict)
+//   case/system/magSchemes.yaml     field: / induction: (kept as Dicts for the
+//                                                         selected models)
+//   case/constant/materials.yaml    named materials     (Material)
+//   case/constant/bodies.yaml       bodies              (Body, Shape)
+//   case/constant/rigidBody.yaml    backend dictionary  (kept as a Dict)
+//
+// Plugins named in controlDict `libs:` are loaded while reading, so models
+// they register are selectable by the other dictionaries.
+#pragma once
+
+#include "magFoam/Body.hpp"
+#include "magFoam/ControlDict.hpp"
+#include "magFoam/Dictionary.hpp"
+#include "magFoam/Material.hpp"
+
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace mag {
+
+class Case {
+public:
+    // Read the case in `dir`. Missing optional dictionaries are allowed here;
+    // the accessors below fail with the missing file's name when used.
+    // `schemes` replaces system/magSchemes.yaml (relative to the case).
+    static Case read(const std::filesystem::path& dir, const std::filesystem::path& schemes = {});
+
+    const std::filesystem::path& dir() const { return dir_; }
+    const ControlDict& control() const;
+    const Dict& magSchemes() const;
+    const Dict& rigidBody() const;
+    // magSchemes.yaml `field:` and `induction:` (default {type: none}).
+    Dict fieldDict() const;
+    Dict inductionDict() const;
+
+    const std::map<std::string, Material>& materials() const { return materials_; }
+    std::vector<Body>& bodies() { return bodies_; }
+    const std::vector<Body>& bodies() const { return bodies_; }
+    // Index of a body by name; InputError naming `context` when unknown.
+    std::size_t bodyIndex(const std::string& name, const std::string& context) const;
+
+    bool hasSoftBodies() const;
+
+private:
+    std::filesystem::path dir_;
+    std::optional<ControlDict> control_;
+    std::optional<Dict> magSchemes_, rigidBody_;
+    std::map<std::string, Material> materials_;
+    std::vector<Body> bodies_;
+};
+
+// Read constant/bodies.yaml (`bodies:` list) given the materials; geometry
+// files are resolved against `caseDir/constant`.
+std::vector<Body> readBodies(const Dict& dict, const std::map<std::string, Material>& materials,
+                             const std::filesystem::path& caseDir);
+
+} // namespace mag

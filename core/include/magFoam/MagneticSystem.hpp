@@ -1,0 +1,44 @@
+// MagneticSystem: one step of the paper's Algorithm 1, in one place, for every
+// app (magFoam, magForces, magBench): converge the induced magnetizations,
+// then the wrench on every body summed over all other bodies. It reaches the
+// models only through the registries (FieldEvaluator, InductionModel).
+#pragma once
+
+#include "magFoam/Case.hpp"
+#include "magFoam/FieldEvaluator.hpp"
+#include "magFoam/InductionModel.hpp"
+
+#include <memory>
+#include <span>
+#include <vector>
+
+namespace mag {
+
+class MagneticSystem {
+public:
+    // Models from the case's system/magSchemes.yaml (field:, induction:).
+    explicit MagneticSystem(const Case& c);
+    MagneticSystem(std::unique_ptr<FieldEvaluator> field, std::unique_ptr<InductionModel> induction);
+
+    // Converge soft-body magnetizations (Algorithm 1, lines 3-12). Does
+    // nothing, and costs nothing, when no body is soft.
+    InductionReport converge(std::vector<Body>& bodies) const;
+
+    // Wrench on each body from all others (lines 13-24). Pairs whose source
+    // or target is unmagnetized are skipped; with skipFixedTargets, bodies
+    // that cannot move get a zero wrench (the solver does not need it).
+    std::vector<Wrench> wrenches(const std::vector<Body>& bodies, bool skipFixedTargets = false) const;
+
+    // Total field of all bodies (except `exclude`, if set) at world points.
+    void field(const std::vector<Body>& bodies, std::span<const Vec3> points, std::span<Vec3> B,
+               std::span<Vec3> A = {}, std::span<Vec3> H = {}, const Body* exclude = nullptr) const;
+
+    const FieldEvaluator& fieldEvaluator() const { return *field_; }
+    const InductionModel& inductionModel() const { return *induction_; }
+
+private:
+    std::unique_ptr<FieldEvaluator> field_;
+    std::unique_ptr<InductionModel> induction_;
+};
+
+} // namespace mag

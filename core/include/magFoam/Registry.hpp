@@ -1,0 +1,65 @@
+// Run-time selection (OpenFOAM's run-time selection tables, without macros):
+// each extension point owns a Registry of named factories, and a plugin adds
+// its types with one static registration object:
+//
+//   static mag::FieldEvaluator::Add<MyEvaluator> addMine("myEvaluator");
+//
+// The registry instance of each base class lives in libmagCore, so every
+// plugin and app sees the same table.
+#pragma once
+
+#include "magFoam/Dictionary.hpp"
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace mag {
+
+// Name of the library whose static initializers are running (set by the
+// plugin loader around dlopen), so entries can say where they came from.
+const std::string& libraryBeingLoaded();
+
+template <class Base> class Registry {
+public:
+    using Factory = std::function<std::unique_ptr<Base>(const Dict&)>;
+    struct Entry {
+        Factory factory;
+        std::string library;
+    };
+
+    // Registering the same name from two libraries is an error (MuJoCo rule).
+    void add(const std::string& name, Factory factory) {
+        const std::string& lib = libraryBeingLoaded();
+        auto it = entries_.find(name);
+        if (it != entries_.end() && it->second.library != lib)
+            throw std::logic_error("type '" + name + "' registered twice: by " + it->second.library + " and " + lib);
+        entries_[name] = Entry{std::move(factory), lib};
+    }
+    bool has(const std::string& name) const { return entries_.count(name) != 0; }
+    const Entry* find(const std::string& name) const {
+        auto it = entries_.find(name);
+        return it == entries_.end() ? nullptr : &it->second;
+    }
+    std::vector<std::string> names() const {
+        std::vector<std::string> out;
+        for (const auto& kv : entries_) out.push_back(kv.first);
+        return out;
+    }
+    const std::map<std::string, Entry>& entries() const { return entries_; }
+    std::size_t size() const { return entries_.size(); }
+
+private:
+    std::map<std::string, Entry> entries_;
+};
+
+// Create a model from `dict`: reads `type`, loads lib<mag+type>.so when the
+// name is unknown (OpenFOAM's solverNew habit), and otherwise fails listing
+// the valid types and the loaded libraries. `what` names the extension point
+// in messages ("field evaluator").
+template <class Base>
+std::unique_ptr<Base> selectFromRegistry(Registry<Base>& registry, const Dict& dict, const std::string& what);
+
+} // namespace mag

@@ -1,0 +1,157 @@
+#include "magFoam/Case.hpp"
+
+#include "magFoam/Error.hpp"
+#include "magFoam/Log.hpp"
+#include "magFoam/Plugins.hpp"
+#include "magFoam/ShapeFactory.hpp"
+
+#include <cmath>
+#include <set>
+
+namespace mag {
+
+namespace {
+
+std::optional<Dict> readOptional(const std::filesystem::path& file) {
+    if (!std::filesystem::exists(file)) return std::nullopt;
+    return Dict::fromFile(file);
+}
+
+[[noreturn]] void missing(const std::filesystem::path& dir, const std::string& file) {
+    throw InputError((dir / file).string() + ": file not found (this app needs it)");
+}
+
+Quat readOrientation(const Dict& body) {
+    if (!body.has("orientation")) return Quat::Identity();
+    const Dict o = body.sub("orientation");
+    Quat q;
+    if (o.has("quaternion")) {
+        q = o.get<Quat>("quaternion");
+    } else {
+        const Vec3 axis = o.get<Vec3>("axis");
+        const double angle = o.get<double>("angle");  // degrees
+        if (axis.norm() < 1e-300) o.fail("axis", "rotation axis has zero length");
+        q = Quat(Eigen::AngleAxisd(angle * pi / 180.0, axis.normalized()));
+    }
+    o.reportUnused();
+    return q;
+}
+
+} // namespace
+
+std::vector<Body> readBodies(const Dict& dict, const std::map<std::string, Material>& materials,
+                             const std::filesystem::path& caseDir) {
+    ShapeCache shapes;
+    std::vector<Body> bodies;
+    std::set<std::string> names;
+    for (const Dict& b : dict.list("bodies")) {
+        Body body;
+        body.name = b.get<std::string>("name");
+        if (!names.insert(body.name).second) b.fail("name", "duplicate body name '" + body.name + "'");
+
+        const std::string matName = b.get<std::string>("material");
+        auto mat = materials.find(matName);
+        if (mat == materials.end()) {
+            std::string valid;
+            for (const auto& [n, m] : materials) valid += (valid.empty() ? "" : ", ") + n;
+            b.fail("material", "unknown material '" + matName + "'; materials in constant/materials.yaml: " +
+                                   (valid.empty() ? std::string("(none)") : valid));
+        }
+        body.material = mat->second;
+
+        body.shape = shapes.get(b.sub("geometry"), caseDir / "constant");
+
+        if (body.material.soft()) {
+            if (b.has("magnetization"))
+                b.fail("magnetization", "soft bodies take no magnetization: it is induced (material '" + matName +
+                                            "' is soft)");
+        } else {
+            const Vec3 dir = b.get<Vec3>("magnetization");
+            if (dir.norm() < 1e-12 && body.material.Br > 0)
+                b.fail("magnetization", "magnetization direction has zero length");
+            body.magnetizationBody = dir.norm() > 0 ? Vec3(dir.normalized() * body.material.Br / mu0) : Vec3::Zero();
+        }
+
+        body.position = b.get<Vec3>("position");
+        body.orientation = readOrientation(b);
+        body.velocity = b.get<Vec3>("velocity", Vec3::Zero());
+        body.angularVelocity = b.get<Vec3>("angularVelocity", Vec3::Zero());
+        body.fixed = b.getWord("motion", {"dynamic", "fixed"}, "dynamic") == "fixed";
+        b.reportUnused();
+        bodies.push_back(std::move(body));
+    }
+    dict.reportUnused();
+    return bodies;
+}
+
+Case Case::read(const std::filesystem::path& dir, const std::filesystem::path& schemes) {
+    Case c;
+    c.dir_ = dir;
+    if (!std::filesystem::is_directory(dir)) throw InputError(dir.string() + ": case folder not found");
+
+    if (auto cd = readOptional(dir / "system/controlDict.yaml")) {
+        c.control_ = ControlDict::read(*cd);
+        for (const auto& lib : c.control_->libs) {
+            try {
+                plugins::load(lib, dir);
+            } catch (const InputError& e) {
+                cd->fail("libs", e.what());
+            }
+        }
+    }
+    if (schemes.empty()) {
+        c.magSchemes_ = readOptional(dir / "system/magSchemes.yaml");
+    } else {
+        const auto file = schemes.is_absolute() ? schemes : dir / schemes;
+        if (!std::filesystem::exists(file)) throw InputError(file.string() + ": -schemes file not found");
+        c.magSchemes_ = Dict::fromFile(file);
+    }
+    c.rigidBody_ = readOptional(dir / "constant/rigidBody.yaml");
+
+    const auto materialsFile = dir / "constant/materials.yaml";
+    const auto bodiesFile = dir / "constant/bodies.yaml";
+    if (!std::filesystem::exists(materialsFile)) missing(dir, "constant/materials.yaml");
+    if (!std::filesystem::exists(bodiesFile)) missing(dir, "constant/bodies.yaml");
+    c.materials_ = readMaterials(Dict::fromFile(materialsFile));
+    c.bodies_ = readBodies(Dict::fromFile(bodiesFile), c.materials_, dir);
+    if (c.bodies_.empty()) throw InputError(bodiesFile.string() + ": bodies: the list is empty");
+    return c;
+}
+
+const ControlDict& Case::control() const {
+    if (!control_) missing(dir_, "system/controlDict.yaml");
+    return *control_;
+}
+
+const Dict& Case::magSchemes() const {
+    if (!magSchemes_) missing(dir_, "system/magSchemes.yaml");
+    return *magSchemes_;
+}
+
+const Dict& Case::rigidBody() const {
+    if (!rigidBody_) missing(dir_, "constant/rigidBody.yaml");
+    return *rigidBody_;
+}
+
+Dict Case::fieldDict() const { return magSchemes().sub("field"); }
+
+Dict Case::inductionDict() const {
+    if (magSchemes().has("induction")) return magSchemes().sub("induction");
+    return Dict::fromString("type: none", magSchemes().file());
+}
+
+std::size_t Case::bodyIndex(const std::string& name, const std::string& context) const {
+    for (std::size_t i = 0; i < bodies_.size(); ++i)
+        if (bodies_[i].name == name) return i;
+    std::string valid;
+    for (const auto& b : bodies_) valid += (valid.empty() ? "" : ", ") + b.name;
+    throw InputError(context + ": unknown body '" + name + "'; bodies: " + valid);
+}
+
+bool Case::hasSoftBodies() const {
+    for (const auto& b : bodies_)
+        if (b.soft()) return true;
+    return false;
+}
+
+} // namespace mag

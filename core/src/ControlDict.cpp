@@ -1,0 +1,22 @@
+#include "magFoam/ControlDict.hpp"
+
+namespace mag {
+
+ControlDict ControlDict::read(const Dict& d) {
+    ControlDict c;
+    c.startTime = d.get<double>("startTime", 0.0);
+    c.endTime = d.get<double>("endTime");
+    c.deltaT = d.get<double>("deltaT");
+    c.writeInterval = d.get<double>("writeInterval", c.deltaT);
+    c.startFrom = d.getWord("startFrom", {"startTime", "latestTime"}, "startTime");
+    c.libs = d.get<std::vector<std::string>>("libs", {});
+    c.threads = d.get<int>("threads", 1);
+    if (c.deltaT <= 0) d.fail("deltaT", "time step must be positive (seconds)");
+    if (c.endTime < c.startTime) d.fail("endTime", "endTime must not be before startTime");
+    if (c.writeInterval <= 0) d.fail("writeInterval", "write interval must be positive (simulated seconds)");
+    if (c.threads < 0) d.fail("threads", "threads must be >= 0 (0 = all cores)");
+    d.reportUnused();
+    return c;
+}
+
+} // namespace mag

@@ -1,0 +1,344 @@
+#include "magFoam/Dictionary.hpp"
+
+#include "magFoam/Error.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+namespace mag {
+
+namespace {
+
+std::string markText(const std::string& file, const YAML::Mark& m) {
+    if (m.is_null()) return file;
+    return file + ":" + std::to_string(m.line + 1) + ":" + std::to_string(m.column + 1);
+}
+
+std::string shortText(const YAML::Node& n) {
+    if (!n.IsDefined() || n.IsNull()) return "nothing";
+    std::ostringstream os;
+    os << n;
+    std::string s = os.str();
+    std::replace(s.begin(), s.end(), '\n', ' ');
+    if (s.size() > 60) s = s.substr(0, 57) + "...";
+    return "'" + s + "'";
+}
+
+// Levenshtein distance, for "did you mean" on misspelled keys.
+std::size_t editDistance(const std::string& a, const std::string& b) {
+    std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        cur[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            std::size_t sub = prev[j - 1] + (std::tolower(a[i - 1]) == std::tolower(b[j - 1]) ? 0 : 1);
+            cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, sub});
+        }
+        std::swap(prev, cur);
+    }
+    return prev[b.size()];
+}
+
+std::string joinWords(const std::vector<std::string>& words) {
+    std::string out;
+    for (const auto& w : words) out += (out.empty() ? "" : ", ") + w;
+    return out;
+}
+
+// yaml-cpp keeps duplicate keys silently; a duplicate is almost always a
+// copy-paste mistake, so reject it where it is.
+void rejectDuplicateKeys(const YAML::Node& node, const std::string& file) {
+    if (node.IsMap()) {
+        std::set<std::string> seen;
+        for (const auto& kv : node) {
+            const std::string key = kv.first.Scalar();
+            if (!seen.insert(key).second)
+                throw InputError(markText(file, kv.first.Mark()) + ": duplicate key '" + key + "'");
+            rejectDuplicateKeys(kv.second, file);
+        }
+    } else if (node.IsSequence()) {
+        for (const auto& item : node) rejectDuplicateKeys(item, file);
+    }
+}
+
+bool parseDouble(const YAML::Node& n, double& out) {
+    if (!n.IsScalar()) return false;
+    const std::string& s = n.Scalar();
+    if (s.empty()) return false;
+    // YAML 1.2 spellings of the special floats (rejected later as non-finite).
+    std::string l = s;
+    std::transform(l.begin(), l.end(), l.begin(), ::tolower);
+    if (l == ".nan") return out = std::numeric_limits<double>::quiet_NaN(), true;
+    if (l == ".inf" || l == "+.inf") return out = std::numeric_limits<double>::infinity(), true;
+    if (l == "-.inf") return out = -std::numeric_limits<double>::infinity(), true;
+    char* end = nullptr;
+    errno = 0;
+    out = std::strtod(s.c_str(), &end);
+    return end == s.c_str() + s.size() && errno != ERANGE;
+}
+
+} // namespace
+
+// ---------------------------------------------------------------------------
+
+Dict::Dict()
+    : state_(std::make_shared<FileState>(FileState{"<empty>", ""})), node_(YAML::NodeType::Map),
+      asked_(std::make_shared<std::set<std::string>>()) {}
+
+Dict::Dict(std::shared_ptr<const FileState> state, YAML::Node node, std::string path)
+    : state_(std::move(state)), node_(std::move(node)), path_(std::move(path)),
+      asked_(std::make_shared<std::set<std::string>>()) {}
+
+Dict Dict::fromFile(const std::filesystem::path& file) {
+    std::ifstream in(file);
+    if (!in) throw InputError(file.string() + ": cannot open dictionary (file not found or unreadable)");
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return fromString(ss.str(), file.string());
+}
+
+Dict Dict::fromString(const std::string& text, const std::string& name) {
+    YAML::Node root;
+    try {
+        root = YAML::Load(text);
+    } catch (const YAML::Exception& e) {
+        throw InputError(markText(name, e.mark) + ": malformed YAML: " + e.msg);
+    }
+    if (root.IsNull()) root = YAML::Node(YAML::NodeType::Map); // empty file
+    if (!root.IsMap())
+        throw InputError(markText(name, root.Mark()) + ": expected a mapping of 'key: value' at the top level, got " +
+                         shortText(root));
+    rejectDuplicateKeys(root, name);
+    return Dict(std::make_shared<FileState>(FileState{name, text}), root, "");
+}
+
+std::string Dict::keyPath(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+
+std::string Dict::where() const { return markText(state_->file, node_.Mark()); }
+
+std::string Dict::where(const std::string& key) const {
+    YAML::Node v = value(key);
+    if (v.IsDefined()) return markText(state_->file, v.Mark());
+    return where();
+}
+
+void Dict::fail(const std::string& key, const std::string& message) const {
+    throw InputError(where(key) + ": " + keyPath(key) + ": " + message);
+}
+
+void Dict::failHere(const std::string& message) const {
+    throw InputError(where() + ": " + (path_.empty() ? std::string("") : path_ + ": ") + message);
+}
+
+YAML::Node Dict::value(const std::string& key) const {
+    asked_->insert(key);
+    if (!node_.IsMap()) return YAML::Node(YAML::NodeType::Undefined);
+    for (const auto& kv : node_)
+        if (kv.first.Scalar() == key) return kv.second;
+    return YAML::Node(YAML::NodeType::Undefined);
+}
+
+YAML::Node Dict::required(const std::string& key) const {
+    YAML::Node v = value(key);
+    if (!v.IsDefined()) fail(key, "required key is missing");
+    return v;
+}
+
+bool Dict::has(const std::string& key) const { return value(key).IsDefined(); }
+bool Dict::isMap(const std::string& key) const { return value(key).IsMap(); }
+bool Dict::isList(const std::string& key) const { return value(key).IsSequence(); }
+
+std::vector<std::string> Dict::keys() const {
+    std::vector<std::string> out;
+    if (node_.IsMap())
+        for (const auto& kv : node_) out.push_back(kv.first.Scalar());
+    return out;
+}
+
+Dict Dict::sub(const std::string& key) const {
+    YAML::Node v = required(key);
+    if (!v.IsMap()) fail(key, "expected a mapping of 'key: value', got " + shortText(v));
+    return Dict(state_, v, keyPath(key));
+}
+
+Dict Dict::subOrEmpty(const std::string& key) const {
+    YAML::Node v = value(key);
+    if (!v.IsDefined() || v.IsNull()) return Dict(state_, YAML::Node(YAML::NodeType::Map), keyPath(key));
+    if (!v.IsMap()) fail(key, "expected a mapping of 'key: value', got " + shortText(v));
+    return Dict(state_, v, keyPath(key));
+}
+
+std::vector<Dict> Dict::list(const std::string& key) const {
+    YAML::Node v = required(key);
+    if (!v.IsSequence()) fail(key, "expected a list ('- ...' items), got " + shortText(v));
+    std::vector<Dict> out;
+    for (std::size_t i = 0; i < v.size(); ++i) {
+        const std::string p = keyPath(key) + "[" + std::to_string(i) + "]";
+        if (!v[i].IsMap())
+            throw InputError(markText(state_->file, v[i].Mark()) + ": " + p + ": expected a mapping, got " +
+                             shortText(v[i]));
+        out.push_back(Dict(state_, v[i], p));
+    }
+    return out;
+}
+
+void Dict::reportUnused() const {
+    if (!node_.IsMap()) return;
+    for (const auto& kv : node_) {
+        const std::string key = kv.first.Scalar();
+        if (asked_->count(key)) continue;
+        std::vector<std::string> valid(asked_->begin(), asked_->end());
+        std::string hint;
+        std::size_t best = 3;
+        for (const auto& v : valid) {
+            std::size_t d = editDistance(key, v);
+            if (d < best) best = d, hint = v;
+        }
+        std::string msg = markText(state_->file, kv.first.Mark()) + ": " +
+                          (path_.empty() ? std::string("") : path_ + ": ") + "unknown key '" + key + "'";
+        if (!hint.empty()) msg += " (did you mean '" + hint + "'?)";
+        msg += valid.empty() ? "; this mapping takes no keys" : "; valid keys: " + joinWords(valid);
+        throw InputError(msg);
+    }
+}
+
+std::string Dict::getWord(const std::string& key, const std::vector<std::string>& valid) const {
+    const std::string w = get<std::string>(key);
+    if (std::find(valid.begin(), valid.end(), w) == valid.end())
+        fail(key, "unknown value '" + w + "'; valid values: " + joinWords(valid));
+    return w;
+}
+
+std::string Dict::getWord(const std::string& key, const std::vector<std::string>& valid,
+                          const std::string& fallback) const {
+    return has(key) ? getWord(key, valid) : fallback;
+}
+
+// --- Typed conversion -------------------------------------------------------
+
+template <class T> struct DictConvert;
+
+template <> struct DictConvert<double> {
+    static double from(const Dict& d, const std::string& key, const YAML::Node& n) {
+        double x;
+        if (!parseDouble(n, x)) d.fail(key, "expected a number, got " + shortText(n));
+        if (!std::isfinite(x)) d.fail(key, "expected a finite number, got " + shortText(n));
+        return x;
+    }
+};
+
+template <> struct DictConvert<int> {
+    static int from(const Dict& d, const std::string& key, const YAML::Node& n) {
+        double x;
+        if (!parseDouble(n, x) || !std::isfinite(x) || x != std::floor(x) || std::abs(x) > 2e9)
+            d.fail(key, "expected an integer, got " + shortText(n));
+        return static_cast<int>(x);
+    }
+};
+
+template <> struct DictConvert<bool> {
+    static bool from(const Dict& d, const std::string& key, const YAML::Node& n) {
+        if (n.IsScalar()) {
+            std::string s = n.Scalar();
+            std::transform(s.begin(), s.end(), s.begin(), ::tolower);
+            if (s == "true" || s == "yes" || s == "on") return true;
+            if (s == "false" || s == "no" || s == "off") return false;
+        }
+        d.fail(key, "expected true or false, got " + shortText(n));
+    }
+};
+
+template <> struct DictConvert<std::string> {
+    static std::string from(const Dict& d, const std::string& key, const YAML::Node& n) {
+        if (!n.IsScalar()) d.fail(key, "expected a word or string, got " + shortText(n));
+        return n.Scalar();
+    }
+};
+
+template <> struct DictConvert<std::vector<double>> {
+    static std::vector<double> from(const Dict& d, const std::string& key, const YAML::Node& n) {
+        if (!n.IsSequence()) d.fail(key, "expected a list of numbers like [1, 2, 3], got " + shortText(n));
+        std::vector<double> out;
+        for (const auto& item : n) {
+            double x;
+            if (!parseDouble(item, x) || !std::isfinite(x))
+                d.fail(key, "expected a list of finite numbers, got " + shortText(n));
+            out.push_back(x);
+        }
+        return out;
+    }
+};
+
+template <> struct DictConvert<std::vector<std::string>> {
+    static std::vector<std::string> from(const Dict& d, const std::string& key, const YAML::Node& n) {
+        if (n.IsNull()) return {};
+        if (!n.IsSequence()) d.fail(key, "expected a list of words like [a, b], got " + shortText(n));
+        std::vector<std::string> out;
+        for (const auto& item : n) {
+            if (!item.IsScalar()) d.fail(key, "expected a list of words, got " + shortText(n));
+            out.push_back(item.Scalar());
+        }
+        return out;
+    }
+};
+
+template <> struct DictConvert<Vec3> {
+    static Vec3 from(const Dict& d, const std::string& key, const YAML::Node& n) {
+        if (!n.IsSequence() || n.size() != 3)
+            d.fail(key, "expected a vector of 3 numbers like [0, 0, 1], got " + shortText(n));
+        Vec3 v;
+        for (int i = 0; i < 3; ++i)
+            if (!parseDouble(n[i], v[i]) || !std::isfinite(v[i]))
+                d.fail(key, "expected a vector of 3 finite numbers, got " + shortText(n));
+        return v;
+    }
+};
+
+template <> struct DictConvert<Quat> {
+    static Quat from(const Dict& d, const std::string& key, const YAML::Node& n) {
+        if (!n.IsSequence() || n.size() != 4)
+            d.fail(key, "expected a quaternion [w, x, y, z], got " + shortText(n));
+        double c[4];
+        for (int i = 0; i < 4; ++i)
+            if (!parseDouble(n[i], c[i]) || !std::isfinite(c[i]))
+                d.fail(key, "expected a quaternion of 4 finite numbers, got " + shortText(n));
+        Quat q(c[0], c[1], c[2], c[3]);
+        if (q.norm() < 1e-12) d.fail(key, "quaternion has zero length");
+        return q.normalized();
+    }
+};
+
+template <class T> T Dict::get(const std::string& key) const {
+    return DictConvert<T>::from(*this, key, required(key));
+}
+
+template <class T> T Dict::get(const std::string& key, const T& fallback) const {
+    YAML::Node v = value(key);
+    if (!v.IsDefined()) return fallback;
+    return DictConvert<T>::from(*this, key, v);
+}
+
+template double Dict::get<double>(const std::string&) const;
+template int Dict::get<int>(const std::string&) const;
+template bool Dict::get<bool>(const std::string&) const;
+template std::string Dict::get<std::string>(const std::string&) const;
+template Vec3 Dict::get<Vec3>(const std::string&) const;
+template Quat Dict::get<Quat>(const std::string&) const;
+template std::vector<double> Dict::get<std::vector<double>>(const std::string&) const;
+template std::vector<std::string> Dict::get<std::vector<std::string>>(const std::string&) const;
+template double Dict::get<double>(const std::string&, const double&) const;
+template int Dict::get<int>(const std::string&, const int&) const;
+template bool Dict::get<bool>(const std::string&, const bool&) const;
+template std::string Dict::get<std::string>(const std::string&, const std::string&) const;
+template Vec3 Dict::get<Vec3>(const std::string&, const Vec3&) const;
+template Quat Dict::get<Quat>(const std::string&, const Quat&) const;
+template std::vector<double> Dict::get<std::vector<double>>(const std::string&, const std::vector<double>&) const;
+template std::vector<std::string> Dict::get<std::vector<std::string>>(const std::string&,
+                                                                      const std::vector<std::string>&) const;
+
+} // namespace mag

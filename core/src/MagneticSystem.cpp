@@ -1,0 +1,52 @@
+#include "magFoam/MagneticSystem.hpp"
+
+namespace mag {
+
+MagneticSystem::MagneticSystem(const Case& c)
+    : field_(FieldEvaluator::New(c.fieldDict())), induction_(InductionModel::New(c.inductionDict())) {
+    c.magSchemes().reportUnused();
+}
+
+MagneticSystem::MagneticSystem(std::unique_ptr<FieldEvaluator> field, std::unique_ptr<InductionModel> induction)
+    : field_(std::move(field)), induction_(std::move(induction)) {}
+
+InductionReport MagneticSystem::converge(std::vector<Body>& bodies) const {
+    bool anySoft = false;
+    for (const auto& b : bodies) anySoft = anySoft || b.soft();
+    if (!anySoft) return {};
+    return induction_->converge(bodies, *field_);
+}
+
+std::vector<Wrench> MagneticSystem::wrenches(const std::vector<Body>& bodies, bool skipFixedTargets) const {
+    std::vector<Wrench> out(bodies.size());
+    for (std::size_t t = 0; t < bodies.size(); ++t) {
+        const Body& target = bodies[t];
+        if (skipFixedTargets && target.fixed) continue;
+        if (target.magnetizationBody.squaredNorm() == 0) continue;
+        for (std::size_t s = 0; s < bodies.size(); ++s) {
+            if (s == t || bodies[s].magnetizationBody.squaredNorm() == 0) continue;
+            out[t] += field_->interaction(bodies[s], target);
+        }
+    }
+    return out;
+}
+
+void MagneticSystem::field(const std::vector<Body>& bodies, std::span<const Vec3> points, std::span<Vec3> B,
+                           std::span<Vec3> A, std::span<Vec3> H, const Body* exclude) const {
+    const std::size_t n = points.size();
+    std::fill(B.begin(), B.end(), Vec3::Zero());
+    std::fill(A.begin(), A.end(), Vec3::Zero());
+    std::fill(H.begin(), H.end(), Vec3::Zero());
+    std::vector<Vec3> b(n), a(A.empty() ? 0 : n), h(H.empty() ? 0 : n);
+    for (const auto& source : bodies) {
+        if (&source == exclude || source.magnetizationBody.squaredNorm() == 0) continue;
+        field_->evaluate(source, points, b, a, h);
+        for (std::size_t i = 0; i < n; ++i) {
+            B[i] += b[i];
+            if (!A.empty()) A[i] += a[i];
+            if (!H.empty()) H[i] += h[i];
+        }
+    }
+}
+
+} // namespace mag

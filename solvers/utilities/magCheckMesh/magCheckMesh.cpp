@@ -1,0 +1,205 @@
+// magCheckMesh: says whether surface meshes can be magnet bodies, and if not,
+// what is wrong and where.
+//
+//   magCheckMesh -case DIR          check the mesh of every body of a case
+//   magCheckMesh FILE [-scale S]    check one mesh file
+//
+// Exit status: 0 all usable, 1 a mesh unusable or unreadable (or a case
+// error), 2 usage error.
+#include <magFoam/ArgList.hpp>
+#include <magFoam/Case.hpp>
+#include <magFoam/Error.hpp>
+#include <magFoam/MassProperties.hpp>
+#include <magFoam/MeshIO.hpp>
+#include <magFoam/MeshTopology.hpp>
+#include <magFoam/ShapeFactory.hpp>
+#include <magFoam/SurfaceMesh.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <iostream>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace mag {
+
+namespace {
+
+std::string num(double x) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.9g", x);
+    return buffer;
+}
+
+std::string vec(const Vec3& v) { return formatPoint(v); }
+
+void row(std::ostream& out, const std::string& key, const std::string& value) {
+    out << "  " << key << std::string(key.size() < 22 ? 22 - key.size() : 1, ' ') << value
+        << '\n';
+}
+
+std::string yesNo(bool ok, const std::string& whyNot) { return ok ? "yes" : "NO (" + whyNot + ")"; }
+
+} // namespace
+
+// Prints the table and the verdict for one mesh; true if the mesh is usable.
+// Shared by the single-file mode and (later) the -case mode.
+bool checkAndReport(const SurfaceMesh& mesh, std::ostream& out) {
+    const TopologyReport report = checkTopology(mesh);
+    const BoundingBox box = boundingBox(mesh);
+
+    row(out, "mesh", mesh.source);
+    row(out, "triangles", std::to_string(mesh.nTriangles()));
+    row(out, "vertices", std::to_string(mesh.nVertices()) +
+                             (report.unusedVertices ? " (" + std::to_string(report.unusedVertices) +
+                                                          " unused)"
+                                                    : ""));
+    row(out, "edges", std::to_string(report.edgeTable.edges.size()));
+    row(out, "shells", std::to_string(report.shells) + " (Euler characteristic " +
+                           std::to_string(report.eulerCharacteristic) + ")");
+    row(out, "bounding box", vec(box.lower) + " to " + vec(box.upper));
+    if (report.invalidTriangles.empty()) row(out, "surface area", num(surfaceArea(mesh)));
+
+    // Mass properties exist only for a solid; unit density, since the material
+    // (and so the density) is not part of the mesh.
+    if (report.usable()) {
+        try {
+            const MassProperties mp = computeMassProperties(mesh, 1.0);
+            row(out, "volume", num(mp.volume));
+            row(out, "centre of mass", vec(mp.centreOfMass));
+            row(out, "principal moments", vec(mp.principalMoments) +
+                                              "  (unit density; times density = kg m^2)");
+            for (int i = 0; i < 3; ++i)
+                row(out, "principal axis " + std::to_string(i + 1), vec(mp.principalAxes.col(i)));
+            row(out, "bounding radius", num(mp.boundingRadius) + "  (about the centre of mass)");
+        } catch (const std::exception& e) {
+            row(out, "mass properties", std::string("failed: ") + e.what());
+        }
+    } else {
+        row(out, "signed volume", num(report.signedVolume));
+        row(out, "mass properties", "n/a (mesh unusable)");
+    }
+
+    // The checks.
+    row(out, "closed", yesNo(report.closed(), std::to_string(report.boundaryEdges.size()) +
+                                                  " boundary edges"));
+    row(out, "manifold", yesNo(report.manifold(),
+                               std::to_string(report.nonManifoldEdges.size()) +
+                                   " edges with more than two triangles, " +
+                                   std::to_string(report.nonManifoldVertices.size()) +
+                                   " vertices joining separate sheets"));
+    row(out, "consistently oriented",
+        yesNo(report.consistentlyOriented(),
+              std::to_string(report.inconsistentEdges.size()) + " edges"));
+    // Inside and outside exist only for a closed, manifold, oriented surface.
+    if (report.closed() && report.manifold() && report.consistentlyOriented())
+        row(out, "outward",
+            yesNo(report.outward(), report.zeroVolume() ? "zero volume" : "inverted"));
+    else
+        row(out, "outward", "n/a (not a closed, manifold, oriented surface)");
+    row(out, "degenerate triangles", std::to_string(report.degenerateTriangles.size()));
+    for (std::size_t s = 0; s < report.shellVolumes.size() && report.shells > 1; ++s)
+        if (report.shellVolumes[s] < 0.0)
+            out << "  note: shell " << s << " has negative volume " << num(report.shellVolumes[s])
+                << " (a cavity, or an inverted part)\n";
+
+    const auto problems = describeProblems(mesh, report, 10);
+    for (const auto& line : problems) out << "\n  problem: " << line << '\n';
+
+    if (report.usable()) {
+        out << "\nmesh OK\n";
+        return true;
+    }
+    std::string reasons;
+    for (const auto& name : problemNames(report)) reasons += (reasons.empty() ? "" : ", ") + name;
+    out << "\nmesh UNUSABLE: " << reasons << '\n';
+    return false;
+}
+
+} // namespace mag
+
+namespace {
+
+int checkFile(const std::string& file, double scale) {
+    std::cout << "magCheckMesh " << file;
+    if (scale != 1.0) std::cout << " (scale " << scale << ")";
+    std::cout << "\n\n";
+    try {
+        mag::MeshLoadReport load;
+        const mag::SurfaceMesh mesh = mag::loadSurfaceMesh(file, {.scale = scale}, &load);
+        mag::row(std::cout, "read", std::to_string(load.trianglesRead) + " triangles, " +
+                                        std::to_string(load.verticesRead) + " vertices (" + load.format + ")");
+        mag::row(std::cout, "welded",
+                 std::to_string(load.verticesMerged) + " vertices merged, " +
+                     std::to_string(load.collapsedTrianglesRemoved) + " collapsed triangles removed" +
+                     (load.pointsAndLinesIgnored
+                          ? ", " + std::to_string(load.pointsAndLinesIgnored) + " points/lines ignored"
+                          : ""));
+        return mag::checkAndReport(mesh, std::cout) ? 0 : 1;
+    } catch (const std::exception& e) {
+        std::cout << "mesh UNUSABLE: " << e.what() << '\n';
+        return 1;
+    }
+}
+
+// Every body's geometry, reported one by one (a broken mesh does not hide the
+// others), then the whole case read as the solver reads it.
+int checkCase(const std::filesystem::path& dir) {
+    const auto bodiesFile = dir / "constant/bodies.yaml";
+    const mag::Dict bodies = mag::Dict::fromFile(bodiesFile);
+    int unusable = 0, n = 0;
+    for (const mag::Dict& b : bodies.list("bodies")) {
+        ++n;
+        const std::string name = b.get<std::string>("name", "(unnamed)");
+        std::cout << "body " << name << " (" << b.where() << ")\n";
+        try {
+            mag::ShapeKind kind;
+            std::string key;
+            const mag::SurfaceMesh mesh = mag::geometryMesh(b.sub("geometry"), dir / "constant", kind, key);
+            std::cout << "  geometry: " << mesh.source << "\n";
+            if (!mag::checkAndReport(mesh, std::cout)) ++unusable;
+        } catch (const std::exception& e) {
+            std::cout << "mesh UNUSABLE: " << e.what() << '\n';
+            ++unusable;
+        }
+        std::cout << "\n";
+    }
+    if (unusable) {
+        std::cout << "magCheckMesh: " << unusable << " of " << n << " meshes UNUSABLE\n";
+        return 1;
+    }
+    mag::Case::read(dir);  // the rest of the case (materials, poses, ...) as the solver sees it
+    std::cout << "magCheckMesh: all " << n << " meshes OK; case " << dir.string() << " reads cleanly\n";
+    return 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    mag::ArgList args("magCheckMesh",
+                      "Checks that surface meshes can be magnet bodies: closed, manifold, consistently and\n"
+                      "outward oriented, no degenerate triangles, non-zero volume. Prints counts, volume,\n"
+                      "centre of mass, principal moments of inertia (unit density), bounding radius, every\n"
+                      "problem with the elements involved, and a verdict. Without FILE: every body of the\n"
+                      "case. Formats: .stl (ASCII/binary) .obj .ply .off.\n"
+                      "Exit status: 0 OK, 1 a mesh unusable or unreadable, 2 usage error.");
+    args.positional("FILE", "check this mesh file instead of the case's bodies", false)
+        .option("scale", "S", "with FILE: multiply coordinates by S (e.g. 0.001 for files in mm)");
+    if (!args.parse(argc, argv)) return args.exitCode();
+    double scale = 1.0;
+    if (args.found("scale")) {
+        const std::string v = args.get("scale");
+        char* end = nullptr;
+        scale = std::strtod(v.c_str(), &end);
+        if (end != v.c_str() + v.size() || !(scale > 0) || !std::isfinite(scale)) {
+            std::cerr << "magCheckMesh: -scale " << v << ": expected a finite number > 0\n";
+            return 2;
+        }
+    }
+    if (args.positionalValue()) return checkFile(*args.positionalValue(), scale);
+    return mag::runGuarded(args, [](const mag::ArgList& a) { return checkCase(a.caseDir()); });
+}

@@ -1,0 +1,55 @@
+// Test fixture: a temporary case folder written from YAML strings, removed
+// when the fixture goes out of scope.
+#pragma once
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+
+namespace magtest {
+
+class TempCase {
+public:
+    TempCase() {
+        std::random_device rd;
+        dir_ = std::filesystem::temp_directory_path() / ("magFoamTest-" + std::to_string(rd()) + std::to_string(rd()));
+        std::filesystem::create_directories(dir_ / "system");
+        std::filesystem::create_directories(dir_ / "constant/geometry");
+    }
+    ~TempCase() {
+        std::error_code ec;
+        std::filesystem::remove_all(dir_, ec);
+    }
+    TempCase(const TempCase&) = delete;
+    TempCase& operator=(const TempCase&) = delete;
+
+    const std::filesystem::path& dir() const { return dir_; }
+    std::filesystem::path path(const std::string& rel) const { return dir_ / rel; }
+
+    TempCase& write(const std::string& rel, const std::string& text) {
+        std::filesystem::create_directories((dir_ / rel).parent_path());
+        std::ofstream(dir_ / rel) << text;
+        return *this;
+    }
+
+    // Two 1 cm N-type cubes along z, unit remanence, and a minimal controlDict.
+    TempCase& twoCubes(double gap = 0.001, const std::string& field = "{type: MBM}") {
+        write("system/controlDict.yaml", "endTime: 0.01\ndeltaT: 0.001\n");
+        write("system/magSchemes.yaml", "field: " + field + "\n");
+        write("constant/materials.yaml", "N: {model: permanent, Br: 1.0, density: 7500}\n");
+        write("constant/bodies.yaml",
+              "bodies:\n"
+              "  - {name: bottom, geometry: {box: {size: [0.01, 0.01, 0.01]}}, material: N,\n"
+              "     magnetization: [0, 0, 1], position: [0, 0, 0], motion: fixed}\n"
+              "  - {name: top, geometry: {box: {size: [0.01, 0.01, 0.01]}}, material: N,\n"
+              "     magnetization: [0, 0, 1], position: [0, 0, " +
+                  std::to_string(0.01 + gap) + "]}\n");
+        return *this;
+    }
+
+private:
+    std::filesystem::path dir_;
+};
+
+} // namespace magtest
