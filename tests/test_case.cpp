@@ -130,3 +130,56 @@ TEST_CASE("bad bodies give file, key and expectation", "[case][badInput]") {
         CHECK_THROWS_WITH(Case::read(c.dir()), Contains("system/controlDict.yaml:2:") && Contains("deltaT"));
     }
 }
+
+// Unusable meshes in a case: the error names the case file, the body's key
+// and the mesh problem with its element.
+#include <magFoam/MeshIO.hpp>
+#include <magFoam/MeshPrimitives.hpp>
+#include <magFoam/SurfaceMesh.hpp>
+
+namespace {
+std::string readMeshCase(const mag::SurfaceMesh& mesh) {
+    magtest::TempCase c;
+    mag::writeStlBinary(mesh, c.path("constant/geometry/part.stl"));
+    oneBody(c, "{name: part, geometry: {file: geometry/part.stl}, material: N42, magnetization: [0, 0, 1], "
+               "position: [0, 0, 0]}");
+    try {
+        Case::read(c.dir());
+    } catch (const mag::InputError& e) {
+        return e.what();
+    }
+    return "no error";
+}
+} // namespace
+
+void requireParts(const std::string& msg, std::initializer_list<const char*> parts) {
+    INFO(msg);
+    for (const char* p : {"constant/bodies.yaml:2:", "bodies[0].geometry", "part.stl"}) CHECK_THAT(msg, Contains(p));
+    for (const char* p : parts) CHECK_THAT(msg, Contains(p));
+}
+
+TEST_CASE("unusable meshes in a case are named with file, key and element", "[case][badInput]") {
+    SECTION("open") {
+        auto m = mag::makeBox(Vec3(1, 1, 1));
+        m.triangles.pop_back();
+        requireParts(readMeshCase(m), {"open", "edge"});
+    }
+    SECTION("inverted") {
+        auto m = mag::makeBox(Vec3(1, 1, 1));
+        mag::flipOrientation(m);
+        requireParts(readMeshCase(m), {"inverted"});
+    }
+    SECTION("non-manifold edge") {
+        auto m = mag::makeBox(Vec3(1, 1, 1));
+        auto fin = m.triangles[0];
+        m.vertices.push_back(Vec3(3, 3, 3));
+        m.triangles.push_back({fin[1], fin[0], m.nVertices() - 1});
+        requireParts(readMeshCase(m), {"manifold"});
+    }
+    SECTION("zero volume") {
+        mag::SurfaceMesh m;
+        m.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0)};
+        m.triangles = {{0, 1, 2}, {1, 3, 2}, {0, 2, 1}, {1, 2, 3}};
+        requireParts(readMeshCase(m), {});
+    }
+}
