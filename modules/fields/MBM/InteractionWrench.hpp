@@ -1,0 +1,85 @@
+// Boundary-integrated interaction of a uniformly magnetized TARGET with the field of a
+// uniformly magnetized polyhedral SOURCE (paper Sec. 4.2, Eqs. 16-18).
+//
+// Everything is in the SOURCE's frame: the caller transforms the target's samples
+// (points, normals; SurfaceQuadrature's transformSamples) and its magnetization M_t and
+// centre of mass r_c into it, and rotates the results back to the world.
+//
+// overlap: amperian (energy / current model; B of the source, including mu0 M_s inside)
+//   F   = sum_k w_k (M_t . B_k) n_k                               (Eq. 16)
+//   T   = M_t x sum_k w_k (n_k x A_k)        = M_t x int_Vt B dV   (Eq. 17)
+//   Tm  = sum_k w_k (M_t . B_k) (r_k - r_c) x n_k                 (Eq. 18)
+//   U   = -M_t . sum_k w_k (n_k x A_k)       = -int_Vt M_t . B dV
+//   F = -grad U and T + Tm = -dU/dtheta; continuous through contact. In overlap it pulls
+//   the bodies towards full overlap (the energy minimum).
+// overlap: charge (Coulomb / surface-charge model, what Akoun-Yonnet gives; default)
+//   B is replaced by mu0 H = B - mu0 M_s insideFraction on the samples:
+//   F   = sum_k w_k (M_t . mu0 H_k) n_k      = int_dVt (M_t . n) mu0 H dA
+//   Tm  = sum_k w_k (M_t . mu0 H_k) (r_k - r_c) x n_k
+//   T   = mu0 M_t x int_Vt H dV = -mu0 M_t x sum_k w_k phi_k n_k    (phi: H = -grad phi)
+//   U   = -mu0 int_Vt M_t . H dV = mu0 sum_k w_k (M_t . n_k) phi_k
+//   Derivation of T: the charge model's complete torque is that of the target's surface
+//   charge, int (M_t . n)(r - r_c) x mu0 H dA. Since curl H = 0 (also across the source's
+//   boundary: tangential H is continuous) (M_t . grad) H = grad(M_t . H), and the
+//   divergence theorem splits it exactly as T + Tm above, like Eqs. 17-18 with B -> mu0 H
+//   - but int_Vt H dV cannot come from n x A (A belongs to B); it is -int dVt phi n dA,
+//   phi = M_s . sum_p W_p n_p / (4 pi) continuous. (Adding mu0 M_t x int H dV to the
+//   surface-charge torque would count the couple twice.)
+//   U_charge = U_amperian + mu0 (M_t . M_s) V_overlap, F = -grad U_charge; the force jumps
+//   by mu0 (M_t . M_s) grad V_overlap at contact and pushes overlapping bodies apart.
+// Both models agree while the bodies do not overlap.
+#pragma once
+
+#include "PolyhedronField.hpp"
+
+#include <span>
+#include <string_view>
+
+namespace mag::mbm {
+
+/// How the source's field acts on target samples inside the source (PHYSICS.md).
+enum class OverlapModel {
+    charge,  ///< mu0 H (Akoun-Yonnet, pushes overlapping bodies apart); the default
+    amperian ///< B (energy-conserving current model, continuous at contact)
+};
+
+/// Parses "charge" or "amperian"; throws std::invalid_argument listing the valid names.
+OverlapModel overlapModelFromName(std::string_view name);
+
+/// Force and torques on the target, source frame.
+struct Wrench {
+    Vec3 force = Vec3::Zero();            ///< N (Eq. 16)
+    Vec3 magneticTorque = Vec3::Zero();   ///< N m (Eq. 17 or its charge counterpart)
+    Vec3 mechanicalTorque = Vec3::Zero(); ///< N m about r_c (Eq. 18)
+    double energy = 0.0;                  ///< J, interaction energy of the chosen model
+    /// Total torque about r_c.
+    Vec3 torque() const { return magneticTorque + mechanicalTorque; }
+};
+
+/// Force, magnetic torque, mechanical torque about rc and energy on the target.
+/// source, Ms: the source's tables and magnetization (A/m, source frame);
+/// points, weights, normals: the target's boundary samples in the source frame;
+/// Mt, rc: the target's magnetization (A/m) and centre of mass (m), source frame.
+Wrench interactionWrench(const PolyhedronTables& source, const Vec3& Ms,
+                         std::span<const Vec3> points, std::span<const double> weights,
+                         std::span<const Vec3> normals, const Vec3& Mt, const Vec3& rc,
+                         OverlapModel model);
+
+/// Energy-consistent quantities of the pair (both models at once, one field pass):
+/// F_model = -grad U_model and (T + Tm)_model = -dU_model/dtheta.
+struct InteractionEnergy {
+    double amperian = 0.0;      ///< J, U = -int_Vt M_t . B dV
+    double charge = 0.0;        ///< J, U = -mu0 int_Vt M_t . H dV = amperian + mu0 Mt.Ms V
+    double overlapVolume = 0.0; ///< m^3, int_Vt insideFraction dV = sum w (S . n) / (4 pi)
+    Vec3 integralB = Vec3::Zero(); ///< T m^3, int_Vt B dV = sum w n x A
+    Vec3 integralH = Vec3::Zero(); ///< A m^2, int_Vt H dV = -sum w phi n
+};
+
+/// Interaction energies, overlap volume and volume integrals of B and H over the target
+/// (arguments as interactionWrench).
+InteractionEnergy interactionEnergy(const PolyhedronTables& source, const Vec3& Ms,
+                                    std::span<const Vec3> points,
+                                    std::span<const double> weights,
+                                    std::span<const Vec3> normals, const Vec3& Mt);
+
+} // namespace mag::mbm
