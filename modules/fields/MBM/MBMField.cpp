@@ -44,7 +44,7 @@ public:
 
     void evaluate(const Body& source, std::span<const Vec3> points, std::span<Vec3> B, std::span<Vec3> A,
                   std::span<Vec3> H) const override {
-        const ShapeData& s = data(*source.shape, source.name);
+        const ShapeData& s = data(source.shape, source.name);
         const Mat3 R = source.orientation.toRotationMatrix();
         const std::size_t n = points.size();
         std::vector<Vec3> local(n), b(n), a(A.empty() ? 0 : n);
@@ -59,8 +59,8 @@ public:
     }
 
     Wrench interaction(const Body& source, const Body& target) const override {
-        const ShapeData& src = data(*source.shape, source.name);
-        const ShapeData& tgt = data(*target.shape, target.name);
+        const ShapeData& src = data(source.shape, source.name);
+        const ShapeData& tgt = data(target.shape, target.name);
         // Target body frame -> source body frame.
         const Quat qs = source.orientation.conjugate();
         Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
@@ -91,17 +91,21 @@ private:
     };
 
     // Tables of a shape, built on first use (shapes are immutable and shared).
-    const ShapeData& data(const Shape& shape, const std::string& bodyName) const {
+    // The weak reference catches a new shape allocated at a freed one's address.
+    const ShapeData& data(const std::shared_ptr<const Shape>& shape, const std::string& bodyName) const {
         std::lock_guard lock(mutex_);
-        auto it = cache_.find(&shape);
-        if (it != cache_.end()) return *it->second;
+        auto it = cache_.find(shape.get());
+        if (it != cache_.end() && !it->second.shape.owner_before(shape) && !shape.owner_before(it->second.shape))
+            return *it->second.data;
         try {
-            mbm::PolyhedronTables tables(shape.mesh.vertices, shape.mesh.triangles);
+            mbm::PolyhedronTables tables(shape->mesh.vertices, shape->mesh.triangles);
             auto samples = mbm::buildSurfaceQuadrature(tables, rule_, n_);
             auto d = std::make_unique<ShapeData>(ShapeData{std::move(tables), std::move(samples)});
-            return *cache_.emplace(&shape, std::move(d)).first->second;
+            auto& entry = cache_[shape.get()];
+            entry = CacheEntry{shape, std::move(d)};
+            return *entry.data;
         } catch (const std::invalid_argument& e) {
-            throw InputError("body '" + bodyName + "' (" + shape.mesh.source + "): " + e.what());
+            throw InputError("body '" + bodyName + "' (" + shape->mesh.source + "): " + e.what());
         }
     }
 
@@ -110,7 +114,11 @@ private:
     int n_ = 10;
     mbm::OverlapModel overlap_ = mbm::OverlapModel::charge;
     mutable std::mutex mutex_;
-    mutable std::map<const Shape*, std::unique_ptr<const ShapeData>> cache_;
+    struct CacheEntry {
+        std::weak_ptr<const Shape> shape;
+        std::unique_ptr<const ShapeData> data;
+    };
+    mutable std::map<const Shape*, CacheEntry> cache_;
 };
 
 const FieldEvaluator::Add<MBMField> addMBM("MBM");

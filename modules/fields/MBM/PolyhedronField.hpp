@@ -18,7 +18,8 @@
 // Numerically stable forms (PHYSICS.md):
 //   - omega_e far away: log1p(2L / (S - L)), S = R1 + R2;
 //   - near the segment (a . b < 0): ln[(S + L)^2 (R1 R2 - a . b) / (2 |a x (r2 - r1)|^2)];
-//   - triple product a . (b x c) = 2 area (a . n_p), with a . n_p from the face plane.
+//   - triple product a . (b x c) = 2 area (a . n_p), a . n_p = (r_v - r) . n_p from one
+//     vertex per face (exactly 0 for a point on an axis-aligned face).
 //
 // Values ON the source's boundary are defined and finite (touching/overlapping bodies put
 // samples there):
@@ -35,8 +36,10 @@
 //     and more than 1e-4 L from a vertex the clamp is skipped: it would change omega
 //     by < 1e-10 there).
 //
-// Cost per point: one distance per vertex, one log per edge between different faces,
-// one atan2 per triangle; no allocation per point (scratch reused per thread).
+// Cost per point: one distance per vertex, one log per edge between different faces
+// (omega_e shared by its two faces, Sec. 5), one atan2 per planar face (the triangles'
+// Van Oosterom-Strackee fractions are multiplied as complex numbers D + iN first);
+// no allocation per point (scratch reused per thread). ~0.5 us per point for a cube.
 #pragma once
 
 #include "PolyhedronTables.hpp"

@@ -1,0 +1,43 @@
+// Shared pieces of the magBench studies: the paper's cube pair, evaluators
+// from inline YAML, timing, exact references, CSV output.
+#pragma once
+
+#include <magFoam/Body.hpp>
+#include <magFoam/FieldEvaluator.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace mag::bench {
+
+// A cube of edge `edge` (m), remanence Br (T) along body +z, at `position`.
+Body cube(const std::string& name, double edge, double Br, const Vec3& position, const Quat& q = Quat::Identity());
+
+// The paper's Fig. 4 pair: 1 cm cubes, 1 T, coaxial, face gap d (m); the
+// second body is the upper one.
+std::vector<Body> cubePair(double gap);
+
+// Evaluator from an inline YAML mapping, e.g. "{type: MBM, quadrature: {n: 4}}".
+std::unique_ptr<FieldEvaluator> evaluator(const std::string& yaml);
+
+// Seconds per call of f, repeated until at least minSeconds have passed.
+double secondsPerCall(const std::function<void()>& f, double minSeconds = 0.05);
+
+// Exact force on the upper cube of a parallel cuboid pair (Akoun-Yonnet).
+Vec3 exactCubeForce(const Body& lower, const Body& upper);
+
+// A named configuration with its exact force on the second body.
+struct Configuration {
+    std::string name;
+    std::vector<Body> bodies;
+    Vec3 exactForce;
+};
+
+// Open postProcessing/<file> under the case, with a header row.
+std::ofstream openCsv(const std::filesystem::path& caseDir, const std::string& file, const std::string& header);
+
+} // namespace mag::bench

@@ -1,0 +1,83 @@
+// magBench: speed-versus-accuracy and stability studies (DESIGN.md §4).
+// Reads system/benchDict.yaml of the case, runs the studies it names (or the
+// one given by -study), writes postProcessing/<study>.csv; the case's plot
+// script turns them into PNG charts.
+//
+//   studies:
+//     accuracyCost: {...}     error vs CPU time per force evaluation
+//     divergence: {...}       force and error vs gap through overlap
+//     switchError: {...}      hybrid error vs switch threshold
+#include "BenchCommon.hpp"
+#include "Studies.hpp"
+
+#include <magFoam/ArgList.hpp>
+#include <magFoam/Error.hpp>
+#include <magFoam/Log.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+using namespace mag;
+
+namespace mag::bench {
+
+std::string substitute(const std::string& text, const std::string& var, double value) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.10g", value);
+    std::string out = text;
+    const std::string key = "$" + var;
+    for (std::size_t p; (p = out.find(key)) != std::string::npos;) out.replace(p, key.size(), buf);
+    return out;
+}
+
+std::vector<Method> readMethods(const Dict& study, const std::string& valueKey) {
+    std::vector<Method> out;
+    for (const Dict& d : study.list("methods")) {
+        Method m{d.get<std::string>("label"), d.get<std::string>("field"), d.get<std::vector<double>>(valueKey, {})};
+        d.reportUnused();
+        out.push_back(m);
+    }
+    return out;
+}
+
+} // namespace mag::bench
+
+namespace {
+
+int run(const ArgList& args) {
+    const auto dir = args.caseDir();
+    const Dict dict = Dict::fromFile(dir / "system/benchDict.yaml");
+    const Dict studies = dict.sub("studies");
+    dict.reportUnused();
+    const std::map<std::string, void (*)(const Dict&, const std::filesystem::path&)> known = {
+        {"accuracyCost", bench::accuracyCostStudy},
+        {"divergence", bench::divergenceStudy},
+        {"switchError", bench::switchErrorStudy}};
+    const std::string only = args.get("study");
+    if (!only.empty() && !known.count(only)) {
+        std::string valid;
+        for (const auto& [k, f] : known) valid += " " + k;
+        throw InputError("-study " + only + ": unknown study; valid:" + valid);
+    }
+    for (const auto& name : studies.keys()) {
+        if (!known.count(name)) {
+            std::string valid;
+            for (const auto& [k, f] : known) valid += (valid.empty() ? "" : ", ") + k;
+            studies.fail(name, "unknown study '" + name + "'; valid studies: " + valid);
+        }
+        if (!only.empty() && name != only) continue;
+        spdlog::info("study {}", name);
+        known.at(name)(studies.sub(name), dir);
+    }
+    return 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    ArgList args("magBench", "Speed-versus-accuracy and stability studies of system/benchDict.yaml -> postProcessing/*.csv.");
+    args.option("study", "NAME", "run only this study of benchDict.yaml");
+    if (!args.parse(argc, argv)) return args.exitCode();
+    return runGuarded(args, run);
+}
