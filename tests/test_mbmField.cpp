@@ -457,6 +457,38 @@ TEST_CASE("solid angles: sum Omega_p = 4 pi inside, 0 outside, fractions on the 
           Approx(0.75).epsilon(1e-14));
 }
 
+TEST_CASE("points within rounding of a merged face keep their side", "[mbm][field]") {
+    // A rotated box whose faces are 3 x 3 squares (18 coplanar triangles each): the
+    // face's solid angle is one atan2 of a product of 18 complex factors, which must not
+    // wrap from +2 pi to -2 pi when the point is a few ulps from the plane.
+    Mesh m = boxMesh(Vec3(0.005, 0.004, 0.003), 3);
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(0.9, Vec3(-1, 2, 0.3).normalized()).toRotationMatrix();
+    for (auto& v : m.V) v = R * v + Vec3(0.001, 0.002, -0.003);
+    const PolyhedronTables t(m.V, m.T);
+    std::mt19937 rng(23);
+    std::uniform_real_distribution<double> uni(-0.9, 0.9);
+    for (const auto& f : t.faces()) {
+        // two in-plane directions of the face
+        const Vec3 e1 = f.normal.unitOrthogonal(), e2 = f.normal.cross(e1);
+        for (int i = 0; i < 20; ++i) {
+            // a point well inside the face (within 0.9 of the inscribed radius ~ 3 mm)
+            const Vec3 p = f.centroid + 0.0027 * (uni(rng) * e1 + uni(rng) * e2) / std::sqrt(2.0);
+            for (double off : {1e-16, 1e-15, 1e-13, 1e-10}) {
+                const double in = evaluate(t, kM, Vec3(p - off * f.normal)).insideFraction;
+                const double out = evaluate(t, kM, Vec3(p + off * f.normal)).insideFraction;
+                // inside: 1 - O(off / size), or 1/2 where |h| is within rounding (on the
+                // plane); never the wrong side
+                CHECK(((std::abs(in - 1) < 1e-6) || (std::abs(in - 0.5) < 1e-14)));
+                CHECK(((std::abs(out) < 1e-6) || (std::abs(out - 0.5) < 1e-14)));
+                if (off >= 1e-13) {
+                    CHECK(std::abs(in - 1) < 1e-6); // beyond rounding: the true side
+                    CHECK(std::abs(out) < 1e-6);
+                }
+            }
+        }
+    }
+}
+
 TEST_CASE("box field equals the closed-form cuboid field (>= 1000 points)", "[mbm][field]") {
     std::mt19937 rng(17);
     std::uniform_real_distribution<double> uni(-1.0, 1.0);

@@ -616,14 +616,17 @@ TEST_CASE("energy consistency: F = -grad U (overlap) and T = -dU/dtheta", "[mbm]
     const PolyhedronTables src(m.V, m.T);
     const Vec3 Ms = Vec3(0.2, 0.3, 1.0).normalized() * kMs;
     const Vec3 Mt = Vec3(1.0, -0.5, 0.3).normalized() * 1.2 * kMs;
-    // Translation in overlap: split/graded samples follow the target.
+    // Translation in overlap: split/graded samples follow the target. Eq. 16 and
+    // -grad U agree to the rule's accuracy (6 points, 4 layers: measured 5.5e-7
+    // amperian, 1.9e-7 charge, independent of the FD step; 5 points, 3 layers: 3e-6).
+    // A wrong overlap treatment would be off by O(1) (the charge/amperian gap is 80 N).
     const Vec3 ct(0.003, -0.0017, 0.004);
-    const double h = 1e-6; // FD step (m): O(h^2) ~ 1e-8 relative, rounding ~1e-9
+    const double h = 1e-6; // FD step (m): the result is the same at 3e-8 .. 1e-6
     auto energyAt = [&](const Vec3& c) {
-        const BoxRules r = boxRules(ht, c, hs, 8, 5);
+        const BoxRules r = boxRules(ht, c, hs, 6, 4);
         return interactionEnergy(src, Ms, r.surface.p, r.surface.w, r.surface.n, Mt);
     };
-    const BoxRules r0 = boxRules(ht, ct, hs, 8, 5);
+    const BoxRules r0 = boxRules(ht, ct, hs, 6, 4);
     for (OverlapModel model : {OverlapModel::amperian, OverlapModel::charge}) {
         const Wrench w = wrenchOf(src, Ms, r0.surface, Mt, ct, model);
         Vec3 grad;
@@ -634,7 +637,10 @@ TEST_CASE("energy consistency: F = -grad U (overlap) and T = -dU/dtheta", "[mbm]
             grad[k] = model == OverlapModel::amperian ? (p.amperian - q.amperian) / (2 * h)
                                                       : (p.charge - q.charge) / (2 * h);
         }
-        CHECK((w.force + grad).norm() <= 1e-6 * w.force.norm());
+        std::printf("%s: |F + grad U| / |F| = %.2e (overlap, translation)\n",
+                    model == OverlapModel::amperian ? "amperian" : "charge",
+                    (w.force + grad).norm() / w.force.norm());
+        CHECK((w.force + grad).norm() <= 2e-6 * w.force.norm());
     }
     // Rotation about r_c (no overlap, gauss samples rotate with the body and M_t).
     const Mesh mt = boxMesh(ht);
@@ -661,6 +667,9 @@ TEST_CASE("energy consistency: F = -grad U (overlap) and T = -dU/dtheta", "[mbm]
         }
         // -dU/dtheta is the complete torque about r_c; the quadrature (n = 24, smooth
         // integrand 0.5 mm from the source) is converged to ~1e-9
+        std::printf("%s: |T + dU/dtheta| / |T| = %.2e (rotation)\n",
+                    model == OverlapModel::amperian ? "amperian" : "charge",
+                    (w.torque() + dU).norm() / w.torque().norm());
         CHECK((w.torque() + dU).norm() <= 1e-6 * w.torque().norm());
     }
 }

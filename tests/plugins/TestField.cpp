@@ -2,11 +2,14 @@
 // that a model in a separate shared library is selectable by name from a case.
 #include <magFoam/FieldEvaluator.hpp>
 
+#include <limits>
+
 namespace {
 
 class UniformTestField final : public mag::FieldEvaluator {
 public:
-    explicit UniformTestField(const mag::Dict& d) : B0_(d.get<mag::Vec3>("B0")) {}
+    explicit UniformTestField(const mag::Dict& d)
+        : B0_(d.get<mag::Vec3>("B0")), nanForce_(d.get<bool>("nanForce", false)) {}
     void evaluate(const mag::Body&, std::span<const mag::Vec3> points, std::span<mag::Vec3> B,
                   std::span<mag::Vec3> A, std::span<mag::Vec3> H) const override {
         for (std::size_t i = 0; i < points.size(); ++i) {
@@ -15,11 +18,17 @@ public:
             if (!H.empty()) H[i] = B0_ / mag::mu0;
         }
     }
-    mag::Wrench interaction(const mag::Body&, const mag::Body&) const override { return {}; }
+    // nanForce: a broken model, to test that solvers stop on non-finite wrenches.
+    mag::Wrench interaction(const mag::Body&, const mag::Body&) const override {
+        mag::Wrench w;
+        if (nanForce_) w.force.x() = std::numeric_limits<double>::quiet_NaN();
+        return w;
+    }
     std::string describe() const override { return "testUniformField"; }
 
 private:
     mag::Vec3 B0_;
+    bool nanForce_;
 };
 
 const mag::FieldEvaluator::Add<UniformTestField> addTest("testUniformField");

@@ -64,7 +64,7 @@ struct PolyTriangle {
 /// A planar polygon (one or more coplanar triangles), possibly non-convex or holed.
 struct PolyFace {
     Vec3 normal = Vec3::Zero();   ///< outward unit normal n_p
-    double offset = 0.0;          ///< n_p . r for r on the face plane
+    double offset = 0.0;          ///< n_p . r_v for a vertex r_v of the face (plane offset)
     double area = 0.0;            ///< m^2
     Vec3 centroid = Vec3::Zero(); ///< area centroid
     int triBegin = 0, triEnd = 0; ///< range in PolyhedronTables::triangles()

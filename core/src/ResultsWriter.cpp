@@ -1,0 +1,208 @@
+#include "magFoam/ResultsWriter.hpp"
+
+#include "magFoam/Dictionary.hpp"
+#include "magFoam/Error.hpp"
+#include "magFoam/VtkWriter.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <regex>
+#include <sstream>
+
+namespace mag {
+
+Energies bodyEnergies(const std::vector<Body>& bodies, const Vec3& gravity, double magnetic) {
+    Energies e;
+    e.magnetic = magnetic;
+    for (const auto& b : bodies) {
+        if (b.fixed) continue;
+        const double m = b.mass();
+        e.kinetic += 0.5 * m * b.velocity.squaredNorm() +
+                     0.5 * b.angularVelocity.dot(b.inertiaWorld() * b.angularVelocity);
+        e.gravitational -= m * gravity.dot(b.position);
+    }
+    return e;
+}
+
+std::string timeName(double t) {
+    const double rounded = std::round(t * 1e12) / 1e12;
+    char buf[64];
+    auto res = std::to_chars(buf, buf + sizeof buf, rounded == 0 ? 0.0 : rounded);
+    return std::string(buf, res.ptr);
+}
+
+std::optional<std::filesystem::path> latestTimeFolder(const std::filesystem::path& caseDir) {
+    std::optional<std::filesystem::path> best;
+    double bestTime = -1e300;
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(caseDir, ec)) {
+        if (!entry.is_directory() || !std::filesystem::exists(entry.path() / "bodies.yaml")) continue;
+        const std::string name = entry.path().filename().string();
+        double t;
+        auto [p, err] = std::from_chars(name.data(), name.data() + name.size(), t);
+        if (err != std::errc() || p != name.data() + name.size()) continue;
+        if (t > bestTime) bestTime = t, best = entry.path();
+    }
+    return best;
+}
+
+RestartState readState(const std::filesystem::path& file, std::vector<Body>& bodies) {
+    const Dict d = Dict::fromFile(file);
+    RestartState s;
+    s.time = d.get<double>("time");
+    s.step = d.get<int>("step");
+    std::vector<bool> seen(bodies.size(), false);
+    for (const Dict& b : d.list("bodies")) {
+        const std::string name = b.get<std::string>("name");
+        std::size_t i = 0;
+        while (i < bodies.size() && bodies[i].name != name) ++i;
+        if (i == bodies.size()) b.fail("name", "body '" + name + "' is not in constant/bodies.yaml");
+        Body& body = bodies[i];
+        body.position = b.get<Vec3>("position");
+        body.orientation = b.get<Quat>("orientation");
+        body.velocity = b.get<Vec3>("velocity");
+        body.angularVelocity = b.get<Vec3>("angularVelocity");
+        body.magnetizationBody = b.get<Vec3>("magnetization");
+        b.reportUnused();
+        seen[i] = true;
+    }
+    d.reportUnused();
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+        if (!seen[i]) throw InputError(file.string() + ": no state for body '" + bodies[i].name + "'");
+    return s;
+}
+
+namespace {
+
+// Keep the header and the rows whose first column (time) is <= tMax.
+void truncateCsv(const std::filesystem::path& file, double tMax) {
+    std::ifstream in(file);
+    if (!in) return;
+    std::string line, kept;
+    bool header = true;
+    while (std::getline(in, line)) {
+        if (header || std::strtod(line.c_str(), nullptr) <= tMax + 1e-12) kept += line + "\n";
+        header = false;
+    }
+    in.close();
+    std::ofstream(file) << kept;
+}
+
+std::ofstream openCsv(const std::filesystem::path& file, const std::string& header, bool append) {
+    const bool fresh = !append || !std::filesystem::exists(file);
+    std::ofstream out(file, fresh ? std::ios::trunc : std::ios::app);
+    if (!out) throw InputError(file.string() + ": cannot write");
+    if (fresh) out << header << "\n";
+    return out;
+}
+
+void vec(std::ostream& os, const Vec3& v) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "[%.17g, %.17g, %.17g]", v.x(), v.y(), v.z());
+    os << buf;
+}
+
+} // namespace
+
+ResultsWriter::ResultsWriter(const std::filesystem::path& caseDir, std::optional<double> restartTime)
+    : dir_(caseDir) {
+    const auto post = dir_ / "postProcessing";
+    std::filesystem::create_directories(post);
+    std::filesystem::create_directories(dir_ / "VTK");
+    if (restartTime) {
+        truncateCsv(post / "bodies.csv", *restartTime);
+        truncateCsv(post / "energy.csv", *restartTime);
+        // Keep the series entries up to the restart time.
+        std::ifstream pvd(dir_ / "VTK/bodies.pvd");
+        const std::regex entry("timestep=\"([^\"]+)\"[^>]*file=\"([^\"]+)\"");
+        std::string line;
+        std::smatch m;
+        while (std::getline(pvd, line))
+            if (std::regex_search(line, m, entry) && std::stod(m[1]) <= *restartTime + 1e-12)
+                series_.emplace_back(std::stod(m[1]), m[2]);
+    }
+    bodiesCsv_ = openCsv(post / "bodies.csv",
+                         "time,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,Fx,Fy,Fz,Tx,Ty,Tz", restartTime.has_value());
+    energyCsv_ = openCsv(post / "energy.csv", "time,kinetic,gravitational,magnetic,total", restartTime.has_value());
+}
+
+void ResultsWriter::write(double time, long step, const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches,
+                          const Energies& e) {
+    char line[1024];
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        const Body& b = bodies[i];
+        const Quat& q = b.orientation;
+        const Vec3 F = wrenches[i].force, T = wrenches[i].totalTorque();
+        std::snprintf(line, sizeof line,
+                      "%.10g,%s,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,"
+                      "%.10g,%.10g,%.10g,%.10g,%.10g,%.10g\n",
+                      time, b.name.c_str(), b.position.x(), b.position.y(), b.position.z(), q.w(), q.x(), q.y(), q.z(),
+                      b.velocity.x(), b.velocity.y(), b.velocity.z(), b.angularVelocity.x(), b.angularVelocity.y(),
+                      b.angularVelocity.z(), F.x(), F.y(), F.z(), T.x(), T.y(), T.z());
+        bodiesCsv_ << line;
+    }
+    bodiesCsv_.flush();
+    std::snprintf(line, sizeof line, "%.10g,%.12g,%.12g,%.12g,%.12g\n", time, e.kinetic, e.gravitational, e.magnetic,
+                  e.total());
+    energyCsv_ << line;
+    energyCsv_.flush();
+    writeState(time, step, bodies);
+    writeVtk(time, bodies, wrenches);
+}
+
+void ResultsWriter::writeState(double time, long step, const std::vector<Body>& bodies) const {
+    const auto folder = dir_ / timeName(time);
+    std::filesystem::create_directories(folder);
+    std::ostringstream os;
+    char buf[128];
+    std::snprintf(buf, sizeof buf, "%.17g", time);
+    os << "# magFoam state: restart with startFrom: latestTime\ntime: " << buf << "\nstep: " << step << "\nbodies:\n";
+    for (const auto& b : bodies) {
+        const Quat& q = b.orientation;
+        std::snprintf(buf, sizeof buf, "%.17g, %.17g, %.17g, %.17g", q.w(), q.x(), q.y(), q.z());
+        os << "  - name: " << b.name << "\n    position: ";
+        vec(os, b.position);
+        os << "\n    orientation: [" << buf << "]\n    velocity: ";
+        vec(os, b.velocity);
+        os << "\n    angularVelocity: ";
+        vec(os, b.angularVelocity);
+        os << "\n    magnetization: ";
+        vec(os, b.magnetizationBody);
+        os << "   # A/m, body frame\n";
+    }
+    // Write then rename: an interrupted write never leaves a broken state.
+    const auto tmp = folder / "bodies.yaml.tmp";
+    std::ofstream(tmp) << os.str();
+    std::filesystem::rename(tmp, folder / "bodies.yaml");
+}
+
+void ResultsWriter::writeVtk(double time, const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches) {
+    std::vector<Vec3> points;
+    std::vector<std::array<int, 3>> tris;
+    vtk::PointField id{"body", 1, {}}, M{"magnetization", 3, {}}, F{"force", 3, {}};
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        const Body& b = bodies[i];
+        const int offset = static_cast<int>(points.size());
+        for (const auto& v : b.shape->mesh.vertices) points.push_back(b.toWorld(v));
+        const Vec3 m = b.magnetization(), f = wrenches[i].force;
+        for (const auto& t : b.shape->mesh.triangles) {
+            tris.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+            id.values.push_back(double(i));
+            M.values.insert(M.values.end(), {m.x(), m.y(), m.z()});
+            F.values.insert(F.values.end(), {f.x(), f.y(), f.z()});
+        }
+    }
+    while (!series_.empty() && series_.back().first >= time - 1e-12) series_.pop_back();
+    const std::string name = "bodies_" + std::to_string(series_.size()) + ".vtp";
+    vtk::writeSurface(dir_ / "VTK" / name, points, tris, {}, {id, M, F});
+    series_.emplace_back(time, name);
+    std::ofstream pvd(dir_ / "VTK/bodies.pvd");
+    pvd.precision(12);
+    pvd << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
+    for (const auto& [t, f] : series_)
+        pvd << "  <DataSet timestep=\"" << t << "\" group=\"\" part=\"0\" file=\"" << f << "\"/>\n";
+    pvd << "</Collection>\n</VTKFile>\n";
+}
+
+} // namespace mag
