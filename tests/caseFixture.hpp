@@ -4,10 +4,21 @@
 
 #include <filesystem>
 #include <fstream>
+#include <cstdlib>
 #include <random>
+#include <stdexcept>
 #include <string>
 
 namespace magtest {
+
+// The build tree (set by CTest): apps in bin/, test plugins in tests/plugins/.
+inline std::filesystem::path buildDir() {
+    const char* d = std::getenv("MAG_BUILD_DIR");
+    if (!d) throw std::runtime_error("MAG_BUILD_DIR is not set: run the tests through ctest");
+    return d;
+}
+inline std::string testPluginDir() { return (buildDir() / "tests/plugins").string(); }
+inline std::string appPath(const std::string& name) { return (buildDir() / "bin" / name).string(); }
 
 class TempCase {
 public:

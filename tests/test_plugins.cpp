@@ -15,11 +15,7 @@
 using Catch::Matchers::Contains;
 
 namespace {
-std::string pluginDir() {
-    const char* d = std::getenv("MAG_TEST_PLUGIN_DIR");
-    REQUIRE(d != nullptr);
-    return d;
-}
+std::string pluginDir() { return magtest::testPluginDir(); }
 } // namespace
 
 TEST_CASE("a plugin named in libs: registers a selectable field evaluator", "[plugins]") {

@@ -1,0 +1,221 @@
+#include "ContactManifold.hpp"
+
+#include <algorithm>
+#include <limits>
+
+namespace mag::ode {
+
+TriangleSet TriangleSet::build(const SurfaceMesh& mesh) {
+    TriangleSet set;
+    const int n = mesh.nTriangles();
+    set.corners.reserve(n), set.normals.reserve(n), set.centres.reserve(n), set.radii.reserve(n);
+    for (int t = 0; t < n; ++t) {
+        const std::array<Vec3, 3> c = {mesh.corner(t, 0), mesh.corner(t, 1), mesh.corner(t, 2)};
+        const Vec3 centre = (c[0] + c[1] + c[2]) / 3;
+        set.corners.push_back(c);
+        set.normals.push_back(mesh.normal(t));
+        set.centres.push_back(centre);
+        set.radii.push_back(std::max({(c[0] - centre).norm(), (c[1] - centre).norm(), (c[2] - centre).norm()}));
+    }
+    return set;
+}
+
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// Closest point of triangle abc to p (Ericson, Real-Time Collision Detection, Sec. 5.1.5).
+Vec3 closestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+    const Vec3 ab = b - a, ac = c - a, ap = p - a;
+    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+    if (d1 <= 0 && d2 <= 0) return a;
+    const Vec3 bp = p - b;
+    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+    if (d3 >= 0 && d4 <= d3) return b;
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
+    const Vec3 cp = p - c;
+    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+    if (d6 >= 0 && d5 <= d6) return c;
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
+    const double denom = 1 / (va + vb + vc);
+    return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+// Triangles of a mesh geom whose bounding sphere meets a world box.
+std::vector<int> trianglesInBox(const GeomView& g, const Vec3& lo, const Vec3& hi) {
+    // The box in the body frame (its 8 corners' bounding box: conservative).
+    Vec3 blo = Vec3::Constant(kInfinity), bhi = -blo;
+    for (int k = 0; k < 8; ++k) {
+        const Vec3 corner((k & 1) ? hi.x() : lo.x(), (k & 2) ? hi.y() : lo.y(), (k & 4) ? hi.z() : lo.z());
+        const Vec3 b = g.rotation.transpose() * (corner - g.position);
+        blo = blo.cwiseMin(b), bhi = bhi.cwiseMax(b);
+    }
+    std::vector<int> out;
+    const TriangleSet& s = *g.triangles;
+    for (int t = 0; t < static_cast<int>(s.centres.size()); ++t) {
+        const Vec3 d = (s.centres[t] - s.centres[t].cwiseMax(blo).cwiseMin(bhi));
+        if (d.norm() <= s.radii[t]) out.push_back(t);
+    }
+    return out;
+}
+
+// The local piece of one geom around a contact point: the faces near it (as
+// planes) and, for a mesh, the corners of those faces. A primitive has no
+// corners here: its own (convex, exact) support function stands in.
+struct LocalPiece {
+    std::vector<Vec3> points;
+    std::vector<Plane> planes;
+};
+void gatherPiece(const GeomView& g, const std::vector<int>& candidates, const Vec3& pWorld, double eps,
+                 LocalPiece& piece) {
+    piece.points.clear();
+    piece.planes.clear();
+    if (!g.triangles) {
+        if (g.surfacePlanes) g.surfacePlanes(pWorld, piece.planes);
+        return;
+    }
+    const TriangleSet& s = *g.triangles;
+    const Vec3 p = g.rotation.transpose() * (pWorld - g.position);
+    for (int t : candidates) {
+        if ((p - s.centres[t]).norm() > s.radii[t] + eps) continue;
+        const auto& c = s.corners[t];
+        if ((closestOnTriangle(p, c[0], c[1], c[2]) - p).norm() > eps) continue;
+        for (const Vec3& v : c) piece.points.push_back(g.rotation * v + g.position);
+        const Vec3 n = g.rotation * s.normals[t];
+        piece.planes.push_back({n, n.dot(piece.points.back())});
+    }
+}
+
+// How deep the other geom's local piece reaches behind a face plane (into the
+// face's body): max over its points of offset - x . n.
+double depthBehind(const Plane& f, const LocalPiece& other, const GeomView& otherGeom) {
+    if (other.points.empty()) return f.offset + otherGeom.support(-f.normal);
+    double deepest = -kInfinity;
+    for (const Vec3& x : other.points) deepest = std::max(deepest, f.offset - x.dot(f.normal));
+    return deepest;
+}
+
+} // namespace
+
+int correctMeshContacts(std::vector<ContactPoint>& contacts, const GeomView& g1, const GeomView& g2, double radius,
+                        double slack) {
+    if (contacts.empty()) return 0;
+    const int before = static_cast<int>(contacts.size());
+    auto hullSeparation = [&](const Vec3& n) { return g2.support(n) + g1.support(-n); };
+
+    // 1. Hull check over the contact normals; the smallest separation also
+    // bounds every depth and the size of the local pieces.
+    double easiest = kInfinity;
+    for (std::size_t i = 0; i < contacts.size(); ++i) {
+        // (Colliders repeat normals: a mesh's support costs a pass over its vertices.)
+        bool seen = false;
+        for (std::size_t j = 0; j < i && !seen; ++j) seen = contacts[j].normal == contacts[i].normal;
+        if (!seen) easiest = std::min(easiest, hullSeparation(contacts[i].normal));
+    }
+    if (easiest < -slack) {
+        contacts.clear();
+        return before;
+    }
+    easiest = std::max(0.0, easiest);
+
+    // Candidate triangles: those near the contact points.
+    Vec3 lo = Vec3::Constant(kInfinity), hi = -lo;
+    for (const ContactPoint& c : contacts) lo = lo.cwiseMin(c.position), hi = hi.cwiseMax(c.position);
+    const double reach = easiest + radius + slack;
+    lo.array() -= reach, hi.array() += reach;
+    const std::vector<int> near1 = g1.triangles ? trianglesInBox(g1, lo, hi) : std::vector<int>();
+    const std::vector<int> near2 = g2.triangles ? trianglesInBox(g2, lo, hi) : std::vector<int>();
+
+    // 2. Per contact: of the faces near it (of either geom), the one the
+    // other geom's local piece penetrates least is the contact's face.
+    LocalPiece piece1, piece2;
+    std::vector<ContactPoint> kept;
+    kept.reserve(contacts.size());
+    for (ContactPoint c : contacts) {
+        const double eps = std::min(std::max(0.0, c.depth), easiest) + radius + slack;
+        gatherPiece(g1, near1, c.position, eps, piece1);
+        gatherPiece(g2, near2, c.position, eps, piece2);
+        double bestDepth = kInfinity;
+        Vec3 best = c.normal;
+        for (const Plane& f : piece2.planes) { // geom 1 leaves along geom 2's face normal
+            const double d = depthBehind(f, piece1, g1);
+            if (d < bestDepth) bestDepth = d, best = f.normal;
+        }
+        for (const Plane& f : piece1.planes) { // geom 1 leaves its own face backwards
+            const double d = depthBehind(f, piece2, g2);
+            if (d < bestDepth) bestDepth = d, best = -f.normal;
+        }
+        if (bestDepth < -slack) continue; // the local pieces are apart
+        // A face much deeper than ODE's own contact means the neighbourhood
+        // missed the face that matters (a concave corner just beyond it):
+        // keep ODE's normal and depth then. Never deeper than the hull
+        // separation.
+        if (bestDepth > 2 * std::max(0.0, c.depth) + radius + 2 * slack) {
+            bestDepth = c.depth;
+            best = c.normal;
+        }
+        const double depth = best.dot(c.normal) > 1 - 1e-12 ? std::min(c.depth, bestDepth) : bestDepth;
+        c.depth = std::clamp(depth, 0.0, std::max(0.0, hullSeparation(best)));
+        c.normal = best;
+        kept.push_back(c);
+    }
+    contacts = std::move(kept);
+    return before - static_cast<int>(contacts.size());
+}
+
+int mergeContacts(std::vector<ContactPoint>& contacts, double distance) {
+    // Normals within ~8 degrees (cos > 0.99) at the same point are one contact.
+    const double cosLimit = 0.99, d2 = distance * distance;
+    std::vector<ContactPoint> kept;
+    kept.reserve(contacts.size());
+    for (const ContactPoint& c : contacts) {
+        auto same = [&](const ContactPoint& k) {
+            return (k.position - c.position).squaredNorm() <= d2 && k.normal.dot(c.normal) > cosLimit;
+        };
+        auto it = std::find_if(kept.begin(), kept.end(), same);
+        if (it == kept.end())
+            kept.push_back(c);
+        else if (c.depth > it->depth)
+            *it = c;
+    }
+    const int merged = static_cast<int>(contacts.size() - kept.size());
+    contacts = std::move(kept);
+    return merged;
+}
+
+void reduceContacts(std::vector<ContactPoint>& contacts, int maxContacts, double normalWeight) {
+    const std::size_t n = contacts.size(), m = static_cast<std::size_t>(std::max(1, maxContacts));
+    if (n <= m) return;
+    // Start from the deepest (the first on ties).
+    std::size_t first = 0;
+    for (std::size_t i = 1; i < n; ++i)
+        if (contacts[i].depth > contacts[first].depth) first = i;
+    std::vector<bool> chosen(n, false);
+    std::vector<double> gap(n, kInfinity);
+    std::vector<ContactPoint> out;
+    out.reserve(m);
+    std::size_t next = first;
+    while (out.size() < m) {
+        chosen[next] = true;
+        out.push_back(contacts[next]);
+        // Distance of every candidate to the chosen set; take the farthest.
+        std::size_t best = n;
+        for (std::size_t i = 0; i < n; ++i) {
+            if (chosen[i]) continue;
+            gap[i] = std::min(gap[i], (contacts[i].position - contacts[next].position).squaredNorm() +
+                                          normalWeight * normalWeight *
+                                              (contacts[i].normal - contacts[next].normal).squaredNorm());
+            if (best == n || gap[i] > gap[best] || (gap[i] == gap[best] && contacts[i].depth > contacts[best].depth))
+                best = i;
+        }
+        if (best == n) break;
+        next = best;
+    }
+    contacts = std::move(out);
+}
+
+} // namespace mag::ode

@@ -1,0 +1,708 @@
+// ODE: rigid bodies with contacts, through the Open Dynamics Engine (Debian
+// 12's ODE 0.16.2: double precision, OPCODE trimesh collider, not
+// thread-safe). Bodies feel the magnetic wrench (force at the COM, torque +
+// mechanical torque), gravity, the ground and each other.
+//
+//   # constant/rigidBody.yaml
+//   type: ODE
+//   gravity: [0, 0, -9.81]
+//   ground: {height: 0}              # omit for no ground
+//   contact: {friction: 0.5, restitution: 0.1, erp: 0.2, cfm: 1e-9, maxContacts: 8}
+//   subSteps: 1
+//
+// | key                           | default   | unit  | meaning                                   |
+// |-------------------------------|-----------|-------|-------------------------------------------|
+// | type                          | required  |       | ODE                                       |
+// | gravity                       | [0, 0, 0] | m/s^2 | as in `free`; the solver's energy.csv     |
+// |                               |           |       | reads it with the same default            |
+// | ground.height                 | 0         | m     | plane z = height; no `ground`: no plane   |
+// | contact.friction              | 0.5       |       | Coulomb mu (friction pyramid scaled by    |
+// |                               |           |       | the normal force, dContactApprox1), >= 0  |
+// | contact.restitution           | 0.1       |       | 0..1                                      |
+// | contact.bounceVelocity        | 0.1       | m/s   | slower impacts do not bounce              |
+// | contact.erp                   | 0.2       |       | share of the penetration corrected per    |
+// |                               |           |       | step, (0, 1]                              |
+// | contact.cfm                   | 1e-9      |       | constraint softness, >= 0                 |
+// | contact.maxContacts           | 8         |       | contact joints per pair, 1..64            |
+// | contact.surfaceLayer          | 1e-6      | m     | penetration left uncorrected, >= 0        |
+// | contact.maxCorrectingVelocity | 0.1       | m/s   | cap of the penetration-correction speed   |
+// | contact.meshCorrection        | true      |       | correct trimesh contacts (below)          |
+// | subSteps                      | 1         |       | ODE steps per solver step, 1..10000       |
+// | maxTravel                     | 0.1       |       | more sub-steps while a body would travel  |
+// |                               |           |       | more than this times its bounding radius  |
+// |                               |           |       | in one; 0: always subSteps                |
+// | maxSubSteps                   | 1000      |       | cap of the automatic sub-steps            |
+// | stepper                       | step      |       | step (dWorldStep) or quickStep            |
+// | iterations                    | 20        |       | quickStep only                            |
+// | collisionShapes               | auto      |       | auto or mesh (every body a trimesh)       |
+// | seed                          | 0         |       | ODE random generator (quickStep's         |
+// |                               |           |       | constraint order), >= 0                   |
+//
+// Why these defaults (measured on 1 cm, 7.5 g cubes pulled together by 50 N,
+// i.e. ~680 g, as in the magnet scenes; tests/test_odeBackend.cpp):
+// - erp 0.2, cfm 1e-9 (the values): contacts effectively rigid in SI
+//   (spring erp/(h cfm) = 2e11 N/m at h = 1 ms) while the LCP stays regular.
+// - maxCorrectingVelocity 0.1 m/s (ODE: unlimited): ODE has no split impulse,
+//   the push-out velocity erp * depth / h stays in the body. Unlimited, 1 mm
+//   of penetration at h = 0.1 ms leaves at 2 m/s: energy injected. Capped, a
+//   body gains at most m (0.1 m/s)^2 / 2 from penetration correction.
+// - bounceVelocity 0.1 m/s = maxCorrectingVelocity: push-out and resting
+//   velocities never bounce (no pumping of resting contacts); restitution
+//   acts on real impacts only and always returns less than it took.
+// - surfaceLayer 1 um (ODE: 0): with 0, touching trimesh faces lose their
+//   contacts every other step (coplanar triangles), so a pulled cube sinks
+//   30 um, is pushed out, sinks again: bursts of 60 rad/s. With a layer the
+//   bodies rest 1 um into each other and keep their contacts. Invisible at
+//   mm..m scales, and the same for primitives.
+// - maxTravel 0.1: at 50 N and deltaT = 1 ms a cube moves 7 mm in one step
+//   and tunnels through the other (also with ODE's own box-box collider).
+//   Sub-steps are added from the body's speed, spin and external
+//   acceleration (contacts ignored: conservative, e.g. 4 sub-steps for the
+//   resting cubes at 1 ms, 386 at 10 ms). The wrench is held over them.
+// - stepper step: dWorldStep solves each island's LCP directly, so stacks
+//   under 1000 g forces rest exactly (no iteration residual, no creep); its
+//   cost grows with the cube of the contact count, fine for tens of magnets.
+//   quickStep (iterative, O(contacts)) for large heaps.
+//
+// Bodies. The ODE body origin is the COM: mass and inertia tensor about the
+// COM from the mesh (Body::mass, inertiaBody; dMassSetParameters), finite
+// rotation mode (exact rotation by w h per step), no auto-disable, no damping.
+// Fixed bodies are static geoms (no ODE body): they never move, their wrench
+// is ignored, their velocities are written as zero. A body whose state is
+// changed between steps (restart, script) is moved there in ODE.
+//
+// Collision shapes (`collisionShapes: auto`): box, sphere and cylinder
+// bodies get ODE's native geoms (exact, fast; ODE cylinders lie along z like
+// ours; sphere/cylinder geoms are the true shapes, the mass is the mesh's);
+// a mesh body that is exactly a box (face normals along three orthogonal
+// axes, volume = that of its bounding box) becomes a box geom with an
+// offset; every other mesh a dGeomTriMesh of the body-frame mesh. `mesh`
+// makes every body a trimesh (for comparisons and the tests).
+//
+// Contacts. A near callback collects up to 64 contacts per pair from
+// dCollide; pairs with a triangle mesh get their normals and depths
+// corrected from the local geometry (ContactManifold.hpp explains why and
+// how: ODE 0.16's trimesh-trimesh contacts between face-to-face meshes carry
+// side normals that throw the upper body sideways); then coincident contacts
+// are merged and at most maxContacts kept (deepest first, then farthest
+// apart). Contact joints: dContactApprox1 | SoftERP | SoftCFM (| Bounce).
+//
+// Determinism: every ODE call runs under one process-wide lock; ODE's global
+// random generator is set to this backend's own state before each world step
+// and read back after, so runs are bit-identical, also with several backends
+// in one process. dInitODE2 runs once per process. A step depends only on the
+// bodies' state and the wrench (dWorldStep keeps nothing between steps, the
+// sub-step count is computed from the state), so a restart from the written
+// state continues bit for bit; with quickStep the random sequence restarts
+// from `seed` (its state is not in the restart file).
+#include "ContactManifold.hpp"
+
+#include <magFoam/Error.hpp>
+#include <magFoam/Log.hpp>
+#include <magFoam/RigidBodyBackend.hpp>
+
+#include <ode/ode.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <limits>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+
+namespace mag {
+
+namespace {
+
+// ---------------------------------------------------------------------------
+// Process-wide ODE state. ODE keeps global collider caches and one global
+// random generator: every ODE call of every backend instance runs under this
+// lock, and dInitODE2 runs once per process.
+// ---------------------------------------------------------------------------
+std::mutex& odeMutex() {
+    static std::mutex m;
+    return m;
+}
+
+std::string formatMessage(const char* msg, va_list ap) {
+    char text[1024];
+    std::vsnprintf(text, sizeof text, msg, ap);
+    return text;
+}
+
+// ODE messages (e.g. "LCP internal error") are warnings: the first few are
+// logged, the rest only at debug level.
+void onMessage(int errnum, const char* msg, va_list ap) {
+    static int count = 0;
+    const std::string text = formatMessage(msg, ap);
+    if (++count <= 5)
+        spdlog::warn("ODE message {}: {}{}", errnum, text, count == 5 ? " (further ODE messages at debug level)" : "");
+    else
+        spdlog::debug("ODE message {}: {}", errnum, text);
+}
+
+// ODE errors must not return: they become a StateError the solver reports.
+void onError(int errnum, const char* msg, va_list ap) {
+    throw StateError("ODE error " + std::to_string(errnum) + ": " + formatMessage(msg, ap));
+}
+
+void initODE() {
+    static std::once_flag once;
+    std::call_once(once, [] {
+        dInitODE2(0);
+        dSetMessageHandler(onMessage);
+        dSetErrorHandler(onError);
+        dSetDebugHandler(onError);
+    });
+    dAllocateODEDataForThread(dAllocateMaskAll);
+}
+
+// ---------------------------------------------------------------------------
+// Collision shapes, built once per Shape and shared by its bodies.
+// ---------------------------------------------------------------------------
+struct CollisionShape {
+    enum class Type { box, sphere, cylinder, trimesh };
+    Type type = Type::trimesh;
+    Vec3 size = Vec3::Zero();           // box edge lengths
+    double radius = 0, height = 0;      // sphere, cylinder (along the geom's z)
+    Vec3 offset = Vec3::Zero();         // geom centre in the body frame
+    Quat offsetRotation = Quat::Identity(); // geom axes in the body frame
+    double scale = 0;                   // bounding radius about the COM, m
+    std::shared_ptr<const Shape> shape; // keeps the mesh (and the ODE data's arrays) alive
+    std::vector<double> vertices;       // trimesh arrays handed to ODE (not copied by it)
+    std::vector<dTriIndex> indices;
+    dTriMeshDataID data = nullptr;
+    ode::TriangleSet triangles;         // trimesh: for the contact correction
+
+    CollisionShape() = default;
+    CollisionShape(const CollisionShape&) = delete;
+    CollisionShape& operator=(const CollisionShape&) = delete;
+    ~CollisionShape() {
+        if (data) dGeomTriMeshDataDestroy(data);
+    }
+
+    std::string name() const {
+        switch (type) {
+        case Type::box: return "box";
+        case Type::sphere: return "sphere";
+        case Type::cylinder: return "cylinder";
+        case Type::trimesh: return "trimesh";
+        }
+        return "?";
+    }
+};
+
+// A mesh that is exactly a box (every face normal along one of three
+// orthogonal axes, and the volume of its bounding box along them): its edge
+// lengths, centre and axes in the body frame.
+struct DetectedBox {
+    Vec3 size;
+    Vec3 centre;
+    Mat3 axes;
+};
+std::optional<DetectedBox> detectBox(const Shape& shape) {
+    // Relative tolerances of STL-in-float accuracy (~1e-7).
+    const double tol = 1e-6;
+    const std::vector<Vec3> normals = triangleNormals(shape.mesh);
+    std::optional<Vec3> u, v;
+    for (const Vec3& n : normals) {
+        if (n.squaredNorm() < 0.5) continue;
+        if (!u)
+            u = n;
+        else if (!v && std::abs(n.dot(*u)) < tol)
+            v = n;
+    }
+    if (!u || !v) return std::nullopt;
+    Mat3 axes;
+    axes.col(0) = *u;
+    axes.col(1) = (*v - v->dot(*u) * *u).normalized();
+    axes.col(2) = axes.col(0).cross(axes.col(1));
+    for (const Vec3& n : normals)
+        if (n.squaredNorm() > 0.5 && (axes.transpose() * n).cwiseAbs().maxCoeff() < 1 - tol) return std::nullopt;
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    for (const Vec3& p : shape.mesh.vertices) {
+        const Vec3 q = axes.transpose() * p;
+        lo = lo.cwiseMin(q), hi = hi.cwiseMax(q);
+    }
+    const Vec3 size = hi - lo;
+    if (std::abs(size.prod() - shape.volume) > tol * shape.volume) return std::nullopt;
+    return DetectedBox{size, axes * (0.5 * (lo + hi)), axes};
+}
+
+// A geom as the contact correction sees it (ContactManifold.hpp): pose,
+// support function, and triangles (meshes) or surface normals (primitives).
+ode::GeomView geomView(dGeomID g, const CollisionShape& cs) {
+    ode::GeomView view;
+    const dReal* p = dGeomGetPosition(g);
+    const dReal* r = dGeomGetRotation(g); // 3x4, row major
+    const Vec3 c(p[0], p[1], p[2]);
+    Mat3 R;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) R(i, j) = r[4 * i + j];
+    view.rotation = R, view.position = c;
+    switch (cs.type) {
+    case CollisionShape::Type::box:
+        view.support = [c, R, half = 0.5 * cs.size](const Vec3& u) {
+            return c.dot(u) + (R.transpose() * u).cwiseAbs().dot(half);
+        };
+        view.surfacePlanes = [c, R, half = 0.5 * cs.size](const Vec3&, std::vector<ode::Plane>& out) {
+            for (int k = 0; k < 3; ++k)
+                for (double sign : {1.0, -1.0}) {
+                    const Vec3 n = sign * R.col(k);
+                    out.push_back({n, n.dot(c) + half[k]});
+                }
+        };
+        break;
+    case CollisionShape::Type::sphere:
+        view.support = [c, r = cs.radius](const Vec3& u) { return c.dot(u) + r * u.norm(); };
+        view.surfacePlanes = [c, r = cs.radius](const Vec3& x, std::vector<ode::Plane>& out) {
+            if ((x - c).norm() == 0) return;
+            const Vec3 n = (x - c).normalized();
+            out.push_back({n, n.dot(c) + r});
+        };
+        break;
+    case CollisionShape::Type::cylinder: {
+        const Vec3 a = R.col(2);
+        view.support = [c, a, r = cs.radius, hh = 0.5 * cs.height](const Vec3& u) {
+            const double along = u.dot(a);
+            return c.dot(u) + r * std::sqrt(std::max(0.0, u.squaredNorm() - along * along)) + hh * std::abs(along);
+        };
+        view.surfacePlanes = [c, a, r = cs.radius, hh = 0.5 * cs.height](const Vec3& x, std::vector<ode::Plane>& out) {
+            out.push_back({a, a.dot(c) + hh});
+            out.push_back({-a, -a.dot(c) + hh});
+            const Vec3 radial = (x - c) - (x - c).dot(a) * a;
+            if (radial.norm() == 0) return;
+            const Vec3 n = radial.normalized();
+            out.push_back({n, n.dot(c) + r});
+        };
+        break;
+    }
+    case CollisionShape::Type::trimesh: {
+        const std::vector<Vec3>* vertices = &cs.shape->mesh.vertices;
+        view.support = [c, R, vertices](const Vec3& u) {
+            const Vec3 ub = R.transpose() * u;
+            double best = -std::numeric_limits<double>::infinity();
+            for (const Vec3& v : *vertices) best = std::max(best, v.dot(ub));
+            return c.dot(u) + best;
+        };
+        view.triangles = &cs.triangles;
+        break;
+    }
+    }
+    return view;
+}
+
+// ---------------------------------------------------------------------------
+// The backend.
+// ---------------------------------------------------------------------------
+class ODEBackend final : public RigidBodyBackend {
+public:
+    explicit ODEBackend(const Dict& d) {
+        gravity_ = d.get<Vec3>("gravity", Vec3::Zero());
+        if (d.has("ground")) {
+            const Dict g = d.sub("ground");
+            groundHeight_ = g.get<double>("height", 0.0);
+            g.reportUnused();
+        }
+        const Dict c = d.subOrEmpty("contact");
+        friction_ = c.get<double>("friction", 0.5);
+        if (!(friction_ >= 0)) c.fail("friction", "friction coefficient must be >= 0");
+        restitution_ = c.get<double>("restitution", 0.1);
+        if (!(restitution_ >= 0 && restitution_ <= 1)) c.fail("restitution", "restitution must be in [0, 1]");
+        bounceVelocity_ = c.get<double>("bounceVelocity", 0.1);
+        if (!(bounceVelocity_ >= 0)) c.fail("bounceVelocity", "bounceVelocity must be >= 0 (m/s)");
+        erp_ = c.get<double>("erp", 0.2);
+        if (!(erp_ > 0 && erp_ <= 1)) c.fail("erp", "erp must be in (0, 1]");
+        cfm_ = c.get<double>("cfm", 1e-9);
+        if (!(cfm_ >= 0)) c.fail("cfm", "cfm must be >= 0");
+        maxContacts_ = c.get<int>("maxContacts", 8);
+        if (maxContacts_ < 1 || maxContacts_ > 64) c.fail("maxContacts", "maxContacts must be 1..64");
+        surfaceLayer_ = c.get<double>("surfaceLayer", 1e-6);
+        if (!(surfaceLayer_ >= 0)) c.fail("surfaceLayer", "surfaceLayer must be >= 0 (m)");
+        maxCorrectingVelocity_ = c.get<double>("maxCorrectingVelocity", 0.1);
+        if (!(maxCorrectingVelocity_ > 0)) c.fail("maxCorrectingVelocity", "maxCorrectingVelocity must be > 0 (m/s)");
+        meshCorrection_ = c.get<bool>("meshCorrection", true);
+
+        c.reportUnused();
+
+        subSteps_ = d.get<int>("subSteps", 1);
+        if (subSteps_ < 1 || subSteps_ > 10000) d.fail("subSteps", "subSteps must be 1..10000");
+        maxTravel_ = d.get<double>("maxTravel", 0.1);
+        if (!(maxTravel_ >= 0)) d.fail("maxTravel", "maxTravel must be >= 0 (0: fixed subSteps)");
+        maxSubSteps_ = d.get<int>("maxSubSteps", 1000);
+        if (maxSubSteps_ < subSteps_ || maxSubSteps_ > 100000)
+            d.fail("maxSubSteps", "maxSubSteps must be subSteps..100000");
+        quickStep_ = d.getWord("stepper", {"step", "quickStep"}, "step") == "quickStep";
+        iterations_ = d.get<int>("iterations", 20);
+        if (iterations_ < 1 || iterations_ > 10000) d.fail("iterations", "iterations must be 1..10000");
+        if (!quickStep_ && d.has("iterations")) d.fail("iterations", "iterations is for stepper: quickStep only");
+        meshOnly_ = d.getWord("collisionShapes", {"auto", "mesh"}, "auto") == "mesh";
+        const int seed = d.get<int>("seed", 0);
+        if (seed < 0) d.fail("seed", "seed must be >= 0");
+        seed_ = static_cast<unsigned long>(seed);
+    }
+
+    ~ODEBackend() override {
+        std::lock_guard lock(odeMutex());
+        destroyWorld();
+    }
+
+    void setup(const std::vector<Body>& bodies) override {
+        std::lock_guard lock(odeMutex());
+        initODE();
+        destroyWorld();
+        world_ = dWorldCreate();
+        dWorldSetGravity(world_, gravity_.x(), gravity_.y(), gravity_.z());
+        dWorldSetERP(world_, erp_);
+        dWorldSetCFM(world_, cfm_);
+        dWorldSetContactMaxCorrectingVel(world_, maxCorrectingVelocity_);
+        dWorldSetContactSurfaceLayer(world_, surfaceLayer_);
+        dWorldSetAutoDisableFlag(world_, 0);
+        dWorldSetQuickStepNumIterations(world_, iterations_);
+        space_ = bodies.size() > 32 ? dHashSpaceCreate(nullptr) : dSimpleSpaceCreate(nullptr);
+        group_ = dJointGroupCreate(0);
+        if (groundHeight_) dCreatePlane(space_, 0, 0, 1, *groundHeight_);
+        rng_ = seed_;
+
+        entries_.assign(bodies.size(), Entry{});
+        double smallest = std::numeric_limits<double>::infinity(), largest = 0;
+        for (std::size_t i = 0; i < bodies.size(); ++i) {
+            const Body& b = bodies[i];
+            if (!b.shape) throw InputError("body '" + b.name + "' has no shape");
+            Entry& e = entries_[i];
+            e.collision = &collisionShape(b);
+            e.fixed = b.fixed;
+            smallest = std::min(smallest, e.collision->scale), largest = std::max(largest, e.collision->scale);
+            if (!b.fixed) {
+                e.body = dBodyCreate(world_);
+                setMass(e.body, b);
+                e.mass = b.mass();
+                dBodySetFiniteRotationMode(e.body, 1);
+                dBodySetAutoDisableFlag(e.body, 0);
+            }
+            e.geom = createGeom(*e.collision);
+            dGeomSetData(e.geom, &e);
+            if (e.body) {
+                dGeomSetBody(e.geom, e.body);
+                if (e.collision->offset != Vec3::Zero() || e.collision->offsetRotation.coeffs() != Quat::Identity().coeffs())
+                    setGeomOffset(e.geom, *e.collision);
+            }
+            push(b, e);
+        }
+        // Hash grid cells from the smallest to twice the largest body.
+        if (bodies.size() > 32 && largest > 0)
+            dHashSpaceSetLevels(space_, static_cast<int>(std::floor(std::log2(smallest))),
+                                static_cast<int>(std::ceil(std::log2(4 * largest))));
+    }
+
+    void step(std::vector<Body>& bodies, std::span<const Wrench> wrenches, double dt) override {
+        std::lock_guard lock(odeMutex());
+        if (!world_ || bodies.size() != entries_.size())
+            throw std::logic_error("ODE rigid-body backend: step() with " + std::to_string(bodies.size()) +
+                                   " bodies after setup() with " + std::to_string(entries_.size()));
+        if (wrenches.size() != bodies.size())
+            throw std::invalid_argument("ODE rigid-body backend: one wrench per body expected");
+        if (!(dt > 0) || !std::isfinite(dt))
+            throw std::invalid_argument("ODE rigid-body backend: time step must be positive and finite");
+
+        // Bodies changed from outside since the last step are moved there.
+        for (std::size_t i = 0; i < bodies.size(); ++i)
+            if (!unchanged(bodies[i], entries_[i])) push(bodies[i], entries_[i]);
+
+        const int n = subStepsFor(wrenches, dt);
+        stats_.steps += 1, stats_.subSteps += n;
+        const double h = dt / n;
+        for (int s = 0; s < n; ++s) {
+            // External wrench (ODE clears its accumulators after every step).
+            for (std::size_t i = 0; i < bodies.size(); ++i) {
+                const Entry& e = entries_[i];
+                if (!e.body) continue;
+                const Vec3& F = wrenches[i].force;
+                const Vec3 T = wrenches[i].totalTorque();
+                dBodyAddForce(e.body, F.x(), F.y(), F.z());
+                dBodyAddTorque(e.body, T.x(), T.y(), T.z());
+            }
+            // Contacts, then one step with this backend's random sequence.
+            dSpaceCollide(space_, this, &ODEBackend::nearCallback);
+            dRandSetSeed(rng_);
+            if (quickStep_)
+                dWorldQuickStep(world_, h);
+            else
+                dWorldStep(world_, h);
+            rng_ = dRandGetSeed();
+            dJointGroupEmpty(group_);
+        }
+
+        for (std::size_t i = 0; i < bodies.size(); ++i) pull(bodies[i], entries_[i]);
+    }
+
+    std::string describe() const override {
+        std::ostringstream os;
+        os << "ODE " << (quickStep_ ? "dWorldQuickStep (" + std::to_string(iterations_) + " iterations)" : "dWorldStep")
+           << ", gravity [" << gravity_.x() << ", " << gravity_.y() << ", " << gravity_.z() << "] m/s^2";
+        if (groundHeight_) os << ", ground z = " << *groundHeight_;
+        os << ", friction " << friction_ << ", restitution " << restitution_ << ", erp " << erp_ << ", cfm " << cfm_
+           << ", maxContacts " << maxContacts_ << ", subSteps " << subSteps_;
+        // Bodies per collision shape, then (once stepping) what the steps did.
+        std::map<std::string, int> count;
+        for (const Entry& e : entries_) ++count[e.collision->name()];
+        os << "; collision shapes:";
+        const char* sep = " ";
+        for (const auto& [name, n] : count) os << sep << n << " " << name, sep = ", ";
+        if (stats_.steps > 0)
+            os << "; sub-steps taken " << stats_.subSteps << " in " << stats_.steps << " steps; contacts found "
+               << stats_.contactsFound << ", dropped " << stats_.contactsDropped << ", merged " << stats_.contactsMerged
+               << ", used " << stats_.contactsUsed;
+        return os.str();
+    }
+
+    // Counters of the contact post-processing (for tests and logs).
+    struct Stats {
+        long contactsFound = 0, contactsDropped = 0, contactsMerged = 0, contactsUsed = 0;
+        long steps = 0, subSteps = 0;
+    };
+
+private:
+    struct Entry {
+        const CollisionShape* collision = nullptr;
+        dBodyID body = nullptr; // null for fixed bodies: a static geom
+        dGeomID geom = nullptr;
+        bool fixed = false;
+        double mass = 0;
+        // State as last written to the Body, to detect outside changes.
+        Vec3 x = Vec3::Zero(), v = Vec3::Zero(), w = Vec3::Zero();
+        Quat q = Quat::Identity();
+    };
+
+    // Sub-steps for this step: subSteps, or more so that no body travels
+    // more than maxTravel times its bounding radius in one sub-step (velocity,
+    // spin and the external acceleration; contacts ignored, so conservative).
+    int subStepsFor(std::span<const Wrench> wrenches, double dt) const {
+        if (maxTravel_ <= 0) return subSteps_;
+        double worst = 0;
+        for (std::size_t i = 0; i < entries_.size(); ++i) {
+            const Entry& e = entries_[i];
+            if (!e.body) continue;
+            const double r = e.collision->scale;
+            const dReal* v = dBodyGetLinearVel(e.body);
+            const dReal* w = dBodyGetAngularVel(e.body);
+            const Vec3 a = wrenches[i].force / e.mass + gravity_;
+            const double travel = (Vec3(v[0], v[1], v[2]).norm() + Vec3(w[0], w[1], w[2]).norm() * r) * dt +
+                                  0.5 * a.norm() * dt * dt;
+            worst = std::max(worst, travel / r);
+        }
+        const double wanted = std::ceil(worst / maxTravel_);
+        return wanted > subSteps_ ? static_cast<int>(std::min<double>(wanted, maxSubSteps_)) : subSteps_;
+    }
+
+    static void nearCallback(void* self, dGeomID a, dGeomID b) { static_cast<ODEBackend*>(self)->collide(a, b); }
+
+    void collide(dGeomID g1, dGeomID g2) {
+        dBodyID b1 = dGeomGetBody(g1), b2 = dGeomGetBody(g2);
+        if (!b1 && !b2) return; // fixed-fixed, fixed-ground
+        const int n = dCollide(g1, g2, kCapacity, &buffer_[0].geom, sizeof(dContact));
+        if (n <= 0) return;
+        stats_.contactsFound += n;
+        contacts_.clear();
+        for (int i = 0; i < n; ++i) {
+            const dContactGeom& c = buffer_[i].geom;
+            contacts_.push_back({Vec3(c.pos[0], c.pos[1], c.pos[2]), Vec3(c.normal[0], c.normal[1], c.normal[2]),
+                                 c.depth, i});
+        }
+        const auto* e1 = static_cast<const Entry*>(dGeomGetData(g1));
+        const auto* e2 = static_cast<const Entry*>(dGeomGetData(g2));
+        const bool mesh = (e1 && e1->collision->type == CollisionShape::Type::trimesh) ||
+                          (e2 && e2->collision->type == CollisionShape::Type::trimesh);
+        // Meshes: correct normals and depths (ContactManifold.hpp); contacts
+        // between primitives or with the ground plane are exact.
+        if (meshCorrection_ && mesh && e1 && e2) {
+            const double scale = std::min(e1->collision->scale, e2->collision->scale);
+            stats_.contactsDropped += ode::correctMeshContacts(contacts_, geomView(g1, *e1->collision),
+                                                               geomView(g2, *e2->collision), 0.02 * scale,
+                                                               surfaceLayer_ + 1e-6 * scale);
+        }
+        // Merge coincident contacts, keep at most maxContacts.
+        const double scale = std::min(e1 ? e1->collision->scale : std::numeric_limits<double>::infinity(),
+                                      e2 ? e2->collision->scale : std::numeric_limits<double>::infinity());
+        stats_.contactsMerged += ode::mergeContacts(contacts_, 1e-3 * scale);
+        ode::reduceContacts(contacts_, maxContacts_, scale);
+        stats_.contactsUsed += static_cast<long>(contacts_.size());
+
+        for (const ode::ContactPoint& c : contacts_) {
+            dContact joint{};
+            joint.geom = buffer_[c.source].geom;
+            for (int k = 0; k < 3; ++k) joint.geom.pos[k] = c.position[k], joint.geom.normal[k] = c.normal[k];
+            joint.geom.depth = c.depth;
+            joint.surface.mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM;
+            if (restitution_ > 0) joint.surface.mode |= dContactBounce;
+            joint.surface.mu = friction_;
+            joint.surface.bounce = restitution_;
+            joint.surface.bounce_vel = bounceVelocity_;
+            joint.surface.soft_erp = erp_;
+            joint.surface.soft_cfm = cfm_;
+            dJointAttach(dJointCreateContact(world_, group_, &joint), b1, b2);
+        }
+    }
+
+    const CollisionShape& collisionShape(const Body& b) {
+        auto it = shapes_.find(b.shape.get());
+        if (it != shapes_.end()) return *it->second;
+        auto cs = std::make_unique<CollisionShape>();
+        const Shape& s = *b.shape;
+        cs->shape = b.shape;
+        cs->scale = s.boundingRadius > 0 ? s.boundingRadius : boundingSphereRadius(s);
+        using K = ShapeKind::Kind;
+        if (!meshOnly_ && s.kind.kind == K::box) {
+            cs->type = CollisionShape::Type::box;
+            cs->size = s.kind.size;
+        } else if (!meshOnly_ && s.kind.kind == K::sphere) {
+            cs->type = CollisionShape::Type::sphere;
+            cs->radius = s.kind.radius;
+        } else if (!meshOnly_ && s.kind.kind == K::cylinder) {
+            cs->type = CollisionShape::Type::cylinder;
+            cs->radius = s.kind.radius;
+            cs->height = s.kind.height;
+        } else if (auto box = meshOnly_ ? std::nullopt : detectBox(s)) {
+            cs->type = CollisionShape::Type::box;
+            cs->size = box->size;
+            cs->offset = box->centre;
+            cs->offsetRotation = Quat(box->axes).normalized();
+        } else {
+            cs->type = CollisionShape::Type::trimesh;
+            cs->triangles = ode::TriangleSet::build(s.mesh);
+            for (const Vec3& v : s.mesh.vertices) cs->vertices.insert(cs->vertices.end(), {v.x(), v.y(), v.z()});
+            for (const auto& t : s.mesh.triangles)
+                for (int k : t) cs->indices.push_back(static_cast<dTriIndex>(k));
+            cs->data = dGeomTriMeshDataCreate();
+            dGeomTriMeshDataBuildDouble(cs->data, cs->vertices.data(), 3 * sizeof(double),
+                                        static_cast<int>(s.mesh.vertices.size()), cs->indices.data(),
+                                        static_cast<int>(cs->indices.size()), 3 * sizeof(dTriIndex));
+            dGeomTriMeshDataPreprocess2(cs->data, 1U << dTRIDATAPREPROCESS_BUILD_CONCAVE_EDGES, nullptr);
+        }
+        return *shapes_.emplace(b.shape.get(), std::move(cs)).first->second;
+    }
+
+    static double boundingSphereRadius(const Shape& s) {
+        double r = 0;
+        for (const Vec3& v : s.mesh.vertices) r = std::max(r, v.norm());
+        return r;
+    }
+
+    dGeomID createGeom(const CollisionShape& cs) {
+        switch (cs.type) {
+        case CollisionShape::Type::box: return dCreateBox(space_, cs.size.x(), cs.size.y(), cs.size.z());
+        case CollisionShape::Type::sphere: return dCreateSphere(space_, cs.radius);
+        case CollisionShape::Type::cylinder: return dCreateCylinder(space_, cs.radius, cs.height);
+        case CollisionShape::Type::trimesh: break;
+        }
+        return dCreateTriMesh(space_, cs.data, nullptr, nullptr, nullptr);
+    }
+
+    static void setGeomOffset(dGeomID g, const CollisionShape& cs) {
+        dGeomSetOffsetPosition(g, cs.offset.x(), cs.offset.y(), cs.offset.z());
+        const dQuaternion q = {cs.offsetRotation.w(), cs.offsetRotation.x(), cs.offsetRotation.y(),
+                               cs.offsetRotation.z()};
+        dGeomSetOffsetQuaternion(g, q);
+    }
+
+    static void setMass(dBodyID body, const Body& b) {
+        const double m = b.mass();
+        const Mat3 I = b.inertiaBody();
+        if (!(m > 0) || !std::isfinite(m))
+            throw InputError("body '" + b.name + "': mass must be positive and finite (density * volume), got " +
+                             std::to_string(m) + " kg");
+        if (!(I.determinant() > 0) || !(I.trace() > 0))
+            throw InputError("body '" + b.name + "': inertia tensor is not positive definite");
+        // Inertia about the COM, which is the ODE body's origin.
+        dMass mass;
+        dMassSetParameters(&mass, m, 0, 0, 0, I(0, 0), I(1, 1), I(2, 2), I(0, 1), I(0, 2), I(1, 2));
+        dBodySetMass(body, &mass);
+    }
+
+    // Body -> ODE (at setup, and when the state was changed from outside).
+    static void push(const Body& b, Entry& e) {
+        const Quat& q = b.orientation; // ODE normalises it
+        const dQuaternion dq = {q.w(), q.x(), q.y(), q.z()};
+        if (e.body) {
+            dBodySetPosition(e.body, b.position.x(), b.position.y(), b.position.z());
+            dBodySetQuaternion(e.body, dq);
+            dBodySetLinearVel(e.body, b.velocity.x(), b.velocity.y(), b.velocity.z());
+            dBodySetAngularVel(e.body, b.angularVelocity.x(), b.angularVelocity.y(), b.angularVelocity.z());
+        } else {
+            // Static geom: the body pose composed with the geom offset.
+            const CollisionShape& cs = *e.collision;
+            const Quat qb = q.normalized();
+            const Vec3 p = b.position + qb * cs.offset;
+            const Quat qg = qb * cs.offsetRotation;
+            const dQuaternion dqg = {qg.w(), qg.x(), qg.y(), qg.z()};
+            dGeomSetPosition(e.geom, p.x(), p.y(), p.z());
+            dGeomSetQuaternion(e.geom, dqg);
+        }
+        e.x = b.position, e.q = b.orientation, e.v = b.velocity, e.w = b.angularVelocity;
+    }
+
+    // ODE -> Body.
+    static void pull(Body& b, Entry& e) {
+        if (e.body) {
+            const dReal* p = dBodyGetPosition(e.body);
+            const dReal* q = dBodyGetQuaternion(e.body);
+            const dReal* v = dBodyGetLinearVel(e.body);
+            const dReal* w = dBodyGetAngularVel(e.body);
+            b.position = Vec3(p[0], p[1], p[2]);
+            b.orientation = Quat(q[0], q[1], q[2], q[3]);
+            b.velocity = Vec3(v[0], v[1], v[2]);
+            b.angularVelocity = Vec3(w[0], w[1], w[2]);
+        } else {
+            b.velocity.setZero();
+            b.angularVelocity.setZero();
+        }
+        e.x = b.position, e.q = b.orientation, e.v = b.velocity, e.w = b.angularVelocity;
+    }
+
+    static bool unchanged(const Body& b, const Entry& e) {
+        return b.position == e.x && b.velocity == e.v && b.angularVelocity == e.w &&
+               b.orientation.coeffs() == e.q.coeffs();
+    }
+
+    void destroyWorld() {
+        if (group_) dJointGroupDestroy(group_);
+        if (space_) dSpaceDestroy(space_); // destroys its geoms (cleanup mode on)
+        if (world_) dWorldDestroy(world_); // destroys the bodies
+        group_ = nullptr, space_ = nullptr, world_ = nullptr;
+        shapes_.clear(); // trimesh data after the geoms that use it
+        entries_.clear();
+    }
+
+    // Settings.
+    Vec3 gravity_ = Vec3::Zero();
+    std::optional<double> groundHeight_;
+    double friction_ = 0.5, restitution_ = 0.1, bounceVelocity_ = 0.1, erp_ = 0.2, cfm_ = 1e-9;
+    double surfaceLayer_ = 1e-6, maxCorrectingVelocity_ = 0.1;
+    double maxTravel_ = 0.1;
+    int maxContacts_ = 8, subSteps_ = 1, maxSubSteps_ = 1000, iterations_ = 20;
+    bool quickStep_ = false, meshOnly_ = false, meshCorrection_ = true;
+    unsigned long seed_ = 0, rng_ = 0;
+
+    // ODE objects and per-body data.
+    dWorldID world_ = nullptr;
+    dSpaceID space_ = nullptr;
+    dJointGroupID group_ = nullptr;
+    std::map<const Shape*, std::unique_ptr<CollisionShape>> shapes_;
+    std::vector<Entry> entries_;
+
+    // Collider output buffer (what ODE may return for one pair) and scratch.
+    static constexpr int kCapacity = 64;
+    dContact buffer_[kCapacity];
+    std::vector<ode::ContactPoint> contacts_;
+    Stats stats_;
+};
+
+const RigidBodyBackend::Add<ODEBackend> addODE("ODE");
+
+} // namespace
+
+} // namespace mag
