@@ -18,14 +18,29 @@ InductionReport MagneticSystem::converge(std::vector<Body>& bodies) const {
 }
 
 std::vector<Wrench> MagneticSystem::wrenches(const std::vector<Body>& bodies, bool skipFixedTargets) const {
+    // One evaluation per pair (the paper negates F for the other magnet):
+    // the sampled boundary is the target's, and the source gets the exact
+    // opposite force and the torque that conserves angular momentum about
+    // any point. A quadrature error then cannot make a cluster of touching
+    // magnets push itself along or spin itself up.
     std::vector<Wrench> out(bodies.size());
-    for (std::size_t t = 0; t < bodies.size(); ++t) {
-        const Body& target = bodies[t];
-        if (skipFixedTargets && target.fixed) continue;
-        if (target.magnetizationBody.squaredNorm() == 0) continue;
-        for (std::size_t s = 0; s < bodies.size(); ++s) {
-            if (s == t || bodies[s].magnetizationBody.squaredNorm() == 0) continue;
-            out[t] += field_->interaction(bodies[s], target);
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        for (std::size_t j = i + 1; j < bodies.size(); ++j) {
+            const Body& a = bodies[i];
+            const Body& b = bodies[j];
+            if (a.magnetizationBody.squaredNorm() == 0 || b.magnetizationBody.squaredNorm() == 0) continue;
+            if (a.fixed && b.fixed && skipFixedTargets) continue;
+            // Sample the body that moves (a fixed body needs no wrench);
+            // otherwise the one listed later.
+            const bool targetIsA = b.fixed && !a.fixed;
+            const std::size_t s = targetIsA ? j : i, t = targetIsA ? i : j;
+            const Wrench w = field_->interaction(bodies[s], bodies[t]);
+            out[t] += w;
+            Wrench r;
+            r.force = -w.force;
+            r.torque = -w.totalTorque() - (bodies[t].position - bodies[s].position).cross(w.force);
+            r.energy = w.energy;
+            out[s] += r;
         }
     }
     return out;

@@ -26,13 +26,13 @@ void onSignal(int) { stopRequested = 1; }
 
 double seconds(Clock::time_point since) { return std::chrono::duration<double>(Clock::now() - since).count(); }
 
-// The first body whose state or wrench is not finite, or nullptr.
+// The first body whose state, or wrench if it can move, is not finite.
 const Body* firstNonFinite(const std::vector<Body>& bodies, const std::vector<Wrench>* wrenches) {
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         const Body& b = bodies[i];
         bool ok = b.position.allFinite() && b.orientation.coeffs().allFinite() && b.velocity.allFinite() &&
                   b.angularVelocity.allFinite() && b.magnetizationBody.allFinite();
-        if (wrenches) {
+        if (wrenches && !b.fixed) {
             const Wrench& w = (*wrenches)[i];
             ok = ok && w.force.allFinite() && w.torque.allFinite() && w.mechanicalTorque.allFinite();
         }

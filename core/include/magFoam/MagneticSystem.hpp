@@ -24,9 +24,11 @@ public:
     // nothing, and costs nothing, when no body is soft.
     InductionReport converge(std::vector<Body>& bodies) const;
 
-    // Wrench on each body from all others (lines 13-24). Pairs whose source
-    // or target is unmagnetized are skipped; with skipFixedTargets, bodies
-    // that cannot move get a zero wrench (the solver does not need it).
+    // Wrench on each body from all others (lines 13-24), one evaluation per
+    // pair: the other body gets the opposite force and the torque that
+    // conserves angular momentum (its torque is reported as `torque`, with
+    // mechanicalTorque zero). Unmagnetized bodies are skipped; with
+    // skipFixedTargets, pairs of two fixed bodies are skipped.
     std::vector<Wrench> wrenches(const std::vector<Body>& bodies, bool skipFixedTargets = false) const;
 
     // Total field of all bodies (except `exclude`, if set) at world points.
