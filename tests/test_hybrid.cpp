@@ -4,6 +4,8 @@
 //     defaults on the paper's Fig. 4 cubes;
 //   - the pure near/far evaluators, selected by name, for the switch decisions;
 //   - a brute-force polytope distance (all vertex-triangle and edge-edge pairs) for GJK.
+#include <magFoam/SurfaceMesh.hpp>
+
 #include <catch2/catch.hpp>
 
 #include "../modules/fields/hybrid/Gjk.hpp"
@@ -99,26 +101,6 @@ Counts counts(const mag::FieldEvaluator& f) {
 }
 
 // --- brute-force distance between two convex triangle meshes (world vertices) ---------
-Vec3 closestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-    // Ericson, Real-Time Collision Detection, 5.1.5 (Voronoi regions).
-    const Vec3 ab = b - a, ac = c - a, ap = p - a;
-    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-    if (d1 <= 0 && d2 <= 0) return a;
-    const Vec3 bp = p - b;
-    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-    if (d3 >= 0 && d4 <= d3) return b;
-    const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
-    const Vec3 cp = p - c;
-    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-    if (d6 >= 0 && d5 <= d6) return c;
-    const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
-    const double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
-    const double denom = 1.0 / (va + vb + vc);
-    return a + ab * (vb * denom) + ac * (vc * denom);
-}
 
 double segmentDistance(const Vec3& p1, const Vec3& q1, const Vec3& p2, const Vec3& q2) {
     // Minimise |p1 + s d1 - p2 - t d2| over [0,1]^2 by sampling the candidates exactly:
@@ -150,9 +132,9 @@ double bruteForceDistance(const Body& A, const Body& B) {
     const auto& tb = B.shape->mesh.triangles;
     double best = std::numeric_limits<double>::infinity();
     for (const Vec3& p : va)
-        for (const auto& t : tb) best = std::min(best, (p - closestOnTriangle(p, vb[t[0]], vb[t[1]], vb[t[2]])).norm());
+        for (const auto& t : tb) best = std::min(best, (p - mag::closestPointOnTriangle(p, vb[t[0]], vb[t[1]], vb[t[2]])).norm());
     for (const Vec3& p : vb)
-        for (const auto& t : ta) best = std::min(best, (p - closestOnTriangle(p, va[t[0]], va[t[1]], va[t[2]])).norm());
+        for (const auto& t : ta) best = std::min(best, (p - mag::closestPointOnTriangle(p, va[t[0]], va[t[1]], va[t[2]])).norm());
     for (const auto& s : ta)
         for (int i = 0; i < 3; ++i)
             for (const auto& t : tb)

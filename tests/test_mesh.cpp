@@ -643,3 +643,17 @@ TEST_CASE("hand-written ASCII STL and OBJ with quads and PLY and OFF load", "[me
         CHECK(computeMassProperties(tet).volume == Approx(4.0).epsilon(1e-14));
     }
 }
+
+TEST_CASE("closest point on a triangle: face, edge and vertex regions", "[mesh]") {
+    const mag::Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+    // Unit triangle: the barycentric divisions round at ~1e-16.
+    auto near = [&](const mag::Vec3& p, const mag::Vec3& expected) {
+        return (mag::closestPointOnTriangle(p, a, b, c) - expected).norm() < 1e-15;
+    };
+    CHECK(near(mag::Vec3(0.2, 0.3, 5), mag::Vec3(0.2, 0.3, 0)));  // face
+    CHECK(near(mag::Vec3(0.5, -2, 1), mag::Vec3(0.5, 0, 0)));     // edge ab
+    CHECK(near(mag::Vec3(1, 1, 0), mag::Vec3(0.5, 0.5, 0)));      // edge bc
+    CHECK(near(mag::Vec3(-1, -1, 0), a));                          // vertex a
+    CHECK(near(mag::Vec3(3, -1, 0), b));                           // vertex b
+    CHECK(near(mag::Vec3(-1, 4, 2), c));                           // vertex c
+}

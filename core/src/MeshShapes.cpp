@@ -458,7 +458,7 @@ BinderClipOptions binderClipOptions(double width) {
     BinderClipOptions o;
     const double f = width / o.width;
     for (double* x : {&o.width, &o.depth, &o.spine, &o.thickness, &o.mouthGap, &o.lip, &o.foldRadius,
-                      &o.handleWire, &o.handleLength, &o.handleSpan, &o.handleLoop, &o.handleStub,
+                      &o.handleWire, &o.handleLength, &o.handleSpan, &o.handleLoop, &o.handlePivot,
                       &o.handleCorner})
         *x *= f;
     o.width = width;
@@ -513,15 +513,15 @@ std::vector<SurfaceMesh> makeBinderClip(const BinderClipOptions& o) {
         requirePositive(o.handleLength, "handleLength", name);
         requirePositive(o.handleSpan, "handleSpan", name);
         requirePositive(o.handleLoop, "handleLoop", name);
-        requirePositive(o.handleStub, "handleStub", name);
+        requirePositive(o.handlePivot, "handlePivot", name);
         requirePositive(o.handleCorner, "handleCorner", name);
         requireRange(o.handleSegments, 3, 256, "handleSegments", name);
         requireRange(o.handleBendSegments, 1, 64, "handleBendSegments", name);
         const double rw = 0.5 * o.handleWire;
         if (!(o.handleSpan + o.handleWire < o.width * 1.5))
             throw InputError(name + ": handleSpan " + number(o.handleSpan) + " is far wider than the clip");
-        if (!(o.handleSpan - 2.0 * o.handleStub > 4.0 * rw))
-            throw InputError(name + ": handle stubs overlap: need handleSpan - 2 handleStub > 2 handleWire");
+        if (!(o.handleSpan - 2.0 * o.handlePivot > 4.0 * rw))
+            throw InputError(name + ": handle pivots overlap: need handleSpan - 2 handlePivot > 2 handleWire");
 
         // Jaw line from the tip towards the back (u) and its outward normal (n).
         const Vec3 eu = (backTop - tipTop).normalized();
@@ -536,10 +536,10 @@ std::vector<SurfaceMesh> makeBinderClip(const BinderClipOptions& o) {
             tangentLength = 0.5 * t * std::tan(0.5 * angleBetween(-lipDir, eu));
         const Vec3 pivot = tipTop + (tangentLength + rw + clearance) * eu + (0.5 * t + rw + clearance) * en;
 
-        // Handle in its plane (u along the jaw, y across): two pivot stubs
+        // Handle in its plane (u along the jaw, y across): two pivot ends
         // pointing at each other, legs converging to the finger loop.
         const double a = 0.5 * o.handleSpan, b = 0.5 * o.handleLoop, L = o.handleLength;
-        const std::vector<Vec2> plan = {{0, -a + o.handleStub}, {0, -a}, {L, -b}, {L, b}, {0, a}, {0, a - o.handleStub}};
+        const std::vector<Vec2> plan = {{0, -a + o.handlePivot}, {0, -a}, {L, -b}, {L, b}, {0, a}, {0, a - o.handlePivot}};
         std::vector<Vec3> path;
         for (const Vec2& q : plan) path.push_back(pivot + q.x() * eu + q.y() * Vec3::UnitY());
         try {
@@ -787,7 +787,7 @@ std::vector<NamedMesh> makeNamedShapes(const Dict& e) {
         o.handleLength = e.get<double>("handleLength", o.handleLength);
         o.handleSpan = e.get<double>("handleSpan", o.handleSpan);
         o.handleLoop = e.get<double>("handleLoop", o.handleLoop);
-        o.handleStub = e.get<double>("handleStub", o.handleStub);
+        o.handlePivot = e.get<double>("handlePivot", o.handlePivot);
         o.handleCorner = e.get<double>("handleCorner", o.handleCorner);
         o.handleSegments = e.get<int>("handleSegments", o.handleSegments);
         o.handleBendSegments = e.get<int>("handleBendSegments", o.handleBendSegments);

@@ -87,9 +87,10 @@ int run(const ArgList& args) {
     auto lastReport = start;
     double magneticSeconds = 0, rigidSeconds = 0;
     long unconvergedSteps = 0, k = 0;
+    std::vector<Body> lastGood;  // kept to write on a non-finite state; reused storage
     for (k = 1; k <= nSteps; ++k) {
         const long step = step0 + k;
-        const std::vector<Body> lastGood = bodies;
+        lastGood = bodies;
 
         // Algorithm 1: induction loop (only with soft bodies), then wrenches.
         const auto tm = Clock::now();

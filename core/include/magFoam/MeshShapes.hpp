@@ -105,7 +105,7 @@ SurfaceMesh makePaperclip(double length = 0.033, double width = 0.008,
 // jaws converging towards the mouth (+x) where they almost touch ('mouthGap'
 // between their inner faces), then two short lips flared outward. The handles
 // are wire loops lying folded back on the outer faces of the jaws; their pivot
-// stubs sit at the mouth end of the jaws.
+// ends sit at the mouth end of the jaws.
 struct BinderClipOptions {
     double width = 0.025;          // along the spine (y), m
     double depth = 0.0175;         // spine back face to the jaw tips (x), m
@@ -121,7 +121,7 @@ struct BinderClipOptions {
     double handleLength = 0.0225;  // from the pivot line to the far end of the loop, m
     double handleSpan = 0.019;     // centreline distance between the pivot corners, m
     double handleLoop = 0.011;     // centreline width of the finger loop, m
-    double handleStub = 0.002;     // length of each pivot stub, m
+    double handlePivot = 0.002;     // length of each pivot end, m
     double handleCorner = 0.0015;  // centreline radius of the handle corners, m
     int handleSegments = 8;        // sides of the handle wire
     int handleBendSegments = 3;    // chords per 90 degrees of handle corner
@@ -133,9 +133,9 @@ BinderClipOptions binderClipOptions(double width);
 
 // The parts of a binder clip: [0] the sheet, [1] the handle on the +z jaw,
 // [2] the handle on the -z jaw (only the sheet when options.handles is false).
-// In a real clip the handle stubs go through the sheet's hinges; here the
+// In a real clip the handle pivots go through the sheet's hinges; here the
 // handles lie a small clearance (0.2 * thickness) outside the jaws and the
-// stubs stop outside the sheet, so the parts never intersect. They may be
+// pivots stop outside the sheet, so the parts never intersect. They may be
 // written as separate bodies or merged (mergeParts) into one mesh with three
 // shells, a valid closed surface for a single rigid clip.
 std::vector<SurfaceMesh> makeBinderClip(const BinderClipOptions& options);

@@ -70,6 +70,10 @@ double surfaceArea(const SurfaceMesh& mesh);
 //   "triangle 3 (vertices 1, 7, 2 at (..), (..), (..))"
 //   "edge between vertex 1 at (..) and vertex 7 at (..)"
 std::string formatPoint(const Vec3& p);
+
+// Closest point of triangle abc to p (Ericson, Real-Time Collision Detection,
+// Sec. 5.1.5: Voronoi regions of the vertices, edges and face).
+Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
 std::string describeVertex(const SurfaceMesh& mesh, int vertex);
 std::string describeTriangle(const SurfaceMesh& mesh, int triangle);
 std::string describeEdge(const SurfaceMesh& mesh, int vertexA, int vertexB);

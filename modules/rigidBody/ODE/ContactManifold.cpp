@@ -24,26 +24,6 @@ namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-// Closest point of triangle abc to p (Ericson, Real-Time Collision Detection, Sec. 5.1.5).
-Vec3 closestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-    const Vec3 ab = b - a, ac = c - a, ap = p - a;
-    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-    if (d1 <= 0 && d2 <= 0) return a;
-    const Vec3 bp = p - b;
-    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-    if (d3 >= 0 && d4 <= d3) return b;
-    const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
-    const Vec3 cp = p - c;
-    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-    if (d6 >= 0 && d5 <= d6) return c;
-    const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
-    const double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
-    const double denom = 1 / (va + vb + vc);
-    return a + ab * (vb * denom) + ac * (vc * denom);
-}
 
 // Triangles of a mesh geom whose bounding sphere meets a world box.
 std::vector<int> trianglesInBox(const GeomView& g, const Vec3& lo, const Vec3& hi) {
@@ -83,7 +63,7 @@ void gatherPiece(const GeomView& g, const std::vector<int>& candidates, const Ve
     for (int t : candidates) {
         if ((p - s.centres[t]).norm() > s.radii[t] + eps) continue;
         const auto& c = s.corners[t];
-        if ((closestOnTriangle(p, c[0], c[1], c[2]) - p).norm() > eps) continue;
+        if ((closestPointOnTriangle(p, c[0], c[1], c[2]) - p).norm() > eps) continue;
         for (const Vec3& v : c) piece.points.push_back(g.rotation * v + g.position);
         const Vec3 n = g.rotation * s.normals[t];
         piece.planes.push_back({n, n.dot(piece.points.back())});

@@ -29,7 +29,7 @@
 //               thickness [0.02 w] mouthGap [0.02 w] lip [0.06 w] lipAngle [30]
 //               foldRadius [0.02 w] (inner) foldSegments [4] (per 90 degrees)
 //               handles [true] handleWire [0.04 w] handleLength [0.9 w]
-//               handleSpan [0.76 w] handleLoop [0.44 w] handleStub [0.08 w]
+//               handleSpan [0.76 w] handleLoop [0.44 w] handlePivot [0.08 w]
 //               handleCorner [0.06 w] handleSegments [8] handleBendSegments [3]
 //               split [false]: true writes <name>_sheet, <name>_handle1, <name>_handle2
 //               (separate bodies); false one mesh of three shells (one rigid clip)
