@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
 """Charts of the magBench studies: accuracy-cost (log-log, Pareto front),
-divergence (force and error vs gap), switch error. PNGs in expected/."""
+divergence (force and error vs gap), switch error, and the timing studies
+table1 (paper Table 1), table2 (whole cases) and scaling (ms per step vs
+number of magnets). PNGs in expected/; a study without its CSV is skipped."""
 import csv
 import math
 import pathlib
@@ -108,8 +110,115 @@ def switch_error():
     fig.savefig(out / "switchError.png", dpi=90)
 
 
+def table1():
+    data = rows("table1")
+    if not data:
+        return
+    fig, ax = plt.subplots(figsize=(6.5, 4.2))
+    ns = list(dict.fromkeys(r["n"] for r in data))
+    threads = list(dict.fromkeys(r["threads"] for r in data))
+    width = 0.8 / (len(threads) + 1)
+    x = range(len(ns))
+    for k, t in enumerate(threads):
+        ms = [next(float(r["msPerStep"]) for r in data if r["n"] == n and r["threads"] == t) for n in ns]
+        ax.bar([i + k * width for i in x], ms, width, label=f"magFoam, {t} thread(s)")
+    paper = [next(float(r["paperMs"]) for r in data if r["n"] == n) for n in ns]
+    ax.bar([i + len(threads) * width for i in x], paper, width, color="0.6", label="paper, one core")
+    ax.set_yscale("log")
+    ax.set_xticks([i + 0.4 - width / 2 for i in x])
+    ax.set_xticklabels([f"n={float(n):g}\n({next(r['samples'] for r in data if r['n'] == n)} samples)" for n in ns])
+    ax.set_ylabel("ms per step (magnetic part)")
+    ax.set_title("Table 1: Fig. 6 cubes, MBM regular n x n per face")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out / "table1.png", dpi=90)
+
+
+def table2():
+    data = rows("table2")
+    if not data:
+        return
+    fig, ax = plt.subplots(figsize=(7.5, 4.2))
+    labels = [f"{pathlib.Path(r['case']).name}\n{r['bodies']} bodies, {r['threads']} thr." for r in data]
+    mag = [float(r["msMagnetic"]) for r in data]
+    rigid = [float(r["msRigid"]) for r in data]
+    x = range(len(data))
+    ax.bar(x, mag, label="magnetic (induction + wrenches)")
+    ax.bar(x, rigid, bottom=mag, label="rigid body")
+    ax.set_xticks(list(x))
+    ax.set_xticklabels(labels, fontsize=8)
+    ax.set_ylabel("ms per step")
+    ax.set_title("Cost per step of whole cases")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out / "table2.png", dpi=90)
+
+
+def scaling():
+    data = rows("scaling")
+    if not data:
+        return
+    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(12, 4.2))
+    for t in list(dict.fromkeys(r["threads"] for r in data)):
+        sel = [r for r in data if r["threads"] == t]
+        ax.loglog([int(r["bodies"]) for r in sel], [float(r["msPerStep"]) for r in sel], "o-", label=f"{t} thread(s)")
+    first = [r for r in data if r["threads"] == data[0]["threads"]]
+    n = [int(r["bodies"]) for r in first]
+    ref = float(first[-1]["msPerStep"])
+    ax.loglog(n, [ref * (k / n[-1]) ** 2 for k in n], "k:", lw=1, label="~ N^2")
+    ax.loglog(n, [ref * k / n[-1] for k in n], "k--", lw=1, label="~ N")
+    ax.set_xlabel("magnets N")
+    ax.set_ylabel("ms per step (wrenches)")
+    ax.set_title("Hybrid: cost per step vs number of magnets")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    for key, label in (("nearPairs", "near (MBM)"), ("farPairs", "far (EDM)"), ("dipolePairs", "dipole")):
+        ax2.loglog(n, [int(r[key]) or float("nan") for r in first], "o-", label=label)  # 0: not drawn
+    ax2.set_xlabel("magnets N")
+    ax2.set_ylabel("pairs")
+    ax2.set_title("Pairs per tier (constant number density)")
+    ax2.grid(True, which="both", alpha=0.3)
+    ax2.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out / "scaling.png", dpi=90)
+
+
+def kernel():
+    data = rows("kernel")
+    if not data:
+        return
+    meshes = list(dict.fromkeys(r["mesh"] for r in data))
+    labels = [f"{m}\n({next(r['triangles'] for r in data if r['mesh'] == m)} tri)" for m in meshes]
+    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(12, 4.2))
+    series = [(o, p) for o in ("A+B", "B") for p in ("reference", "fast")]
+    width = 0.8 / len(series)
+    for k, (o, p) in enumerate(series):
+        ns = [next((float(r["nsPerPoint"]) for r in data if r["mesh"] == m and r["outputs"] == o and r["path"] == p),
+                   float("nan")) for m in meshes]
+        ax.bar([i + (k - 1.5) * width for i in range(len(meshes))], ns, width, label=f"{o} {p}")
+    ax.set_yscale("log")
+    ax.set_xticks(range(len(meshes)), labels)
+    ax.set_ylabel("ns per point (one core)")
+    ax.set_title("MBM field kernel: cost per point")
+    ax.legend(fontsize=8)
+    for k, o in enumerate(("A+B", "B")):
+        sp = [next((float(r["speedup"]) for r in data if r["mesh"] == m and r["outputs"] == o and r["path"] == "fast"),
+                   float("nan")) for m in meshes]
+        ax2.bar([i + (k - 0.5) * 0.4 for i in range(len(meshes))], sp, 0.4, label=o)
+    ax2.set_xticks(range(len(meshes)), labels)
+    ax2.set_ylabel("speed-up, fast / reference")
+    ax2.set_title("SIMD kernel vs face-by-face reference")
+    ax2.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out / "kernel.png", dpi=90)
+
+
 accuracy_cost()
 divergence()
 switch_error()
+table1()
+table2()
+scaling()
+kernel()
 print("charts in", out)
 sys.exit(0)

@@ -13,7 +13,7 @@ ArgList::ArgList(std::string app, std::string summary) : app_(std::move(app)), s
     options_ = {{"case", "DIR", "case folder (default: current folder)"},
                 {"help", "", "print this usage and exit"},
                 {"listModules", "", "list the available model types and their libraries, then exit"},
-                {"threads", "N", "worker threads (overrides controlDict threads; 0 = all cores; not used yet)"},
+                {"threads", "N", "worker threads (overrides controlDict threads; 0 = all cores)"},
                 {"schemes", "FILE", "use FILE (relative to the case) instead of system/magSchemes.yaml"},
                 {"debug", "", "debug-level logging"}};
 }

@@ -1,5 +1,9 @@
 #include "magFoam/MagneticSystem.hpp"
 
+#include "magFoam/Threads.hpp"
+
+#include <algorithm>
+
 namespace mag {
 
 MagneticSystem::MagneticSystem(const Case& c)
@@ -23,7 +27,44 @@ std::vector<Wrench> MagneticSystem::wrenches(const std::vector<Body>& bodies, bo
     // opposite force and the torque that conserves angular momentum about
     // any point. A quadrature error then cannot make a cluster of touching
     // magnets push itself along or spin itself up.
+    struct Pair {
+        std::size_t source, target;
+    };
+    // Pairs go in chunks: a chunk's wrenches are evaluated into per-pair slots
+    // (in parallel), then added to the bodies in pair order. Chunks bound the
+    // memory of large scenes (5 MB, not 80 bytes per pair) without changing
+    // any sum's order; each is still one parallel loop of many pairs.
+    constexpr std::size_t kChunk = 65536;
+    std::vector<Pair> pairs;
+    std::vector<Wrench> perPair;
     std::vector<Wrench> out(bodies.size());
+    auto flush = [&] {
+        perPair.resize(pairs.size());
+        auto evaluate = [&](std::size_t k) {
+            perPair[k] = field_->interaction(bodies[pairs[k].source], bodies[pairs[k].target]);
+        };
+        // Many pairs: in parallel, handed out in runs (cheap pairs, dipole or
+        // EDM at ~0.1-1 us, must not each take the shared loop counter). Few:
+        // one after another, so that an evaluator's own parallel loop (MBM's
+        // sample blocks) gets the threads. Either way each pair's result is the
+        // same, bit for bit.
+        const auto nThreads = static_cast<std::size_t>(threads());
+        if (pairs.size() >= 2 * nThreads)
+            parallelFor(pairs.size(), evaluate, std::max<std::size_t>(1, pairs.size() / (64 * nThreads)));
+        else
+            for (std::size_t k = 0; k < pairs.size(); ++k) evaluate(k);
+        for (std::size_t k = 0; k < pairs.size(); ++k) {
+            const std::size_t s = pairs[k].source, t = pairs[k].target;
+            const Wrench& w = perPair[k];
+            out[t] += w;
+            Wrench r;
+            r.force = -w.force;
+            r.torque = -w.totalTorque() - (bodies[t].position - bodies[s].position).cross(w.force);
+            r.energy = w.energy;
+            out[s] += r;
+        }
+        pairs.clear();
+    };
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         for (std::size_t j = i + 1; j < bodies.size(); ++j) {
             const Body& a = bodies[i];
@@ -33,17 +74,19 @@ std::vector<Wrench> MagneticSystem::wrenches(const std::vector<Body>& bodies, bo
             // Sample the body that moves (a fixed body needs no wrench);
             // otherwise the one listed later.
             const bool targetIsA = b.fixed && !a.fixed;
-            const std::size_t s = targetIsA ? j : i, t = targetIsA ? i : j;
-            const Wrench w = field_->interaction(bodies[s], bodies[t]);
-            out[t] += w;
-            Wrench r;
-            r.force = -w.force;
-            r.torque = -w.totalTorque() - (bodies[t].position - bodies[s].position).cross(w.force);
-            r.energy = w.energy;
-            out[s] += r;
+            pairs.push_back(targetIsA ? Pair{j, i} : Pair{i, j});
+            if (pairs.size() == kChunk) flush();
         }
     }
+    flush();
     return out;
+}
+
+MagneticSystem::Step MagneticSystem::step(std::vector<Body>& bodies) const {
+    Step s;
+    s.induction = converge(bodies);
+    s.wrenches = wrenches(bodies, true);
+    return s;
 }
 
 void MagneticSystem::field(const std::vector<Body>& bodies, std::span<const Vec3> points, std::span<Vec3> B,

@@ -11,6 +11,7 @@
 #include <magFoam/MagneticSystem.hpp>
 #include <magFoam/ResultsWriter.hpp>
 #include <magFoam/RigidBodyBackend.hpp>
+#include <magFoam/Threads.hpp>
 
 #include <chrono>
 #include <cmath>
@@ -53,6 +54,7 @@ void writeResults(ResultsWriter& writer, const MagneticSystem& magnets, const st
 int run(const ArgList& args) {
     Case c = Case::read(args.caseDir(), args.schemesFile());
     const ControlDict& control = c.control();
+    const int threads = setThreads(args, c);
     MagneticSystem magnets(c);
     std::unique_ptr<RigidBodyBackend> backend = RigidBodyBackend::New(c.rigidBody());
     const Vec3 gravity = c.rigidBody().get<Vec3>("gravity", Vec3::Zero());
@@ -75,7 +77,8 @@ int run(const ArgList& args) {
     const double dt = control.deltaT;
     const long nSteps = std::max(0L, std::lround((control.endTime - t0) / dt));
     const long writeEvery = std::max(1L, std::lround(control.writeInterval / dt));
-    spdlog::info("magFoam: {} bodies, {} steps of {} s from t = {}", bodies.size(), nSteps, dt, t0);
+    spdlog::info("magFoam: {} bodies, {} steps of {} s from t = {}, {} thread(s)", bodies.size(), nSteps, dt, t0,
+                 threads);
     spdlog::info("  field:      {}", magnets.fieldEvaluator().describe());
     spdlog::info("  induction:  {}", c.hasSoftBodies() ? magnets.inductionModel().describe() : "none (no soft bodies)");
     spdlog::info("  rigid body: {}", backend->describe());
@@ -94,7 +97,8 @@ int run(const ArgList& args) {
 
         // Algorithm 1: induction loop (only with soft bodies), then wrenches.
         const auto tm = Clock::now();
-        const InductionReport ind = magnets.converge(bodies);
+        const MagneticSystem::Step magnetic = magnets.step(bodies);
+        const InductionReport& ind = magnetic.induction;
         if (!ind.converged) {
             ++unconvergedSteps;
             std::string names;
@@ -102,7 +106,7 @@ int run(const ArgList& args) {
             spdlog::warn("step {}: induction not converged after {} iterations (residual {:.3g}):{}", step,
                          ind.iterations, ind.residual, names);
         }
-        const std::vector<Wrench> wrenches = magnets.wrenches(bodies, true);
+        const std::vector<Wrench>& wrenches = magnetic.wrenches;
         magneticSeconds += seconds(tm);
 
         const auto tr = Clock::now();

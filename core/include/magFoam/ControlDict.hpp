@@ -6,8 +6,8 @@
 //   writeInterval: 0.01   # simulated seconds between writes, > 0
 //   startFrom: startTime  # or latestTime (restart from the newest time folder)
 //   libs: []              # extra plugin libraries: bare names or paths
-//   threads: 1            # worker threads (0 = all cores); read and checked, but
-//                         # evaluation is single-threaded until threading lands
+//   threads: 1            # worker threads for the pair wrenches (0 = all cores);
+//                         # results are bit-identical for any count (Threads.hpp)
 #pragma once
 
 #include "magFoam/Dictionary.hpp"

@@ -29,7 +29,18 @@ public:
     // conserves angular momentum (its torque is reported as `torque`, with
     // mechanicalTorque zero). Unmagnetized bodies are skipped; with
     // skipFixedTargets, pairs of two fixed bodies are skipped.
+    // Pairs run on the worker threads (Threads.hpp); each pair's wrench goes
+    // to its own slot and the slots are summed in pair order, so the result
+    // is bit-identical for any thread count.
     std::vector<Wrench> wrenches(const std::vector<Body>& bodies, bool skipFixedTargets = false) const;
+
+    // The magnetic part of one solver step, as magFoam runs it: converge, then
+    // wrenches with pairs of two fixed bodies skipped.
+    struct Step {
+        InductionReport induction;
+        std::vector<Wrench> wrenches;
+    };
+    Step step(std::vector<Body>& bodies) const;
 
     // Total field of all bodies (except `exclude`, if set) at world points.
     void field(const std::vector<Body>& bodies, std::span<const Vec3> points, std::span<Vec3> B,

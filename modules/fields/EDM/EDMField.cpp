@@ -56,6 +56,9 @@
 // (paper Sec. 3, Fig. 2). Every softened pair is counted: softenedPairs(), describe(),
 // and a debug log line per interaction or evaluate call that softened any.
 //
+// Threads: interaction() and evaluate() may run concurrently: the dipole tables are
+// built under a mutex and never change, scratch is per thread, the counter atomic.
+//
 // Cost: O(N_source N_target) per interaction, N = n^3 at most (paper: O(n^6)); about
 // 9 ns per dipole pair (one core, -O3): 0.9 us at n = 2, 39 us at n = 4, 2.5 ms at
 // n = 8, 9 ms at n = 10 for two cubes.

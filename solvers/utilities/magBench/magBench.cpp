@@ -7,12 +7,20 @@
 //     accuracyCost: {...}     error vs CPU time per force evaluation
 //     divergence: {...}       force and error vs gap through overlap
 //     switchError: {...}      hybrid error vs switch threshold
+//     kernel: {...}           ns per point of the MBM field kernel, reference vs fast
+//     table1: {...}           paper Table 1: ms per step, MBM regular n, 1 and all threads
+//     table2: {...}           ms per step (magnetic, rigid) of whole cases
+//     scaling: {...}          ms per step of the wrenches vs the number of magnets
+//
+// -threads N sets the worker count of the studies that do not list their own
+// (default 1: the accuracy studies time one core).
 #include "BenchCommon.hpp"
 #include "Studies.hpp"
 
 #include <magFoam/ArgList.hpp>
 #include <magFoam/Error.hpp>
 #include <magFoam/Log.hpp>
+#include <magFoam/Threads.hpp>
 
 #include <cmath>
 #include <cstdio>
@@ -47,13 +55,18 @@ namespace {
 
 int run(const ArgList& args) {
     const auto dir = args.caseDir();
+    setThreads(args.threads().value_or(1));
     const Dict dict = Dict::fromFile(dir / "system/benchDict.yaml");
     const Dict studies = dict.sub("studies");
     dict.reportUnused();
     const std::map<std::string, void (*)(const Dict&, const std::filesystem::path&)> known = {
         {"accuracyCost", bench::accuracyCostStudy},
         {"divergence", bench::divergenceStudy},
-        {"switchError", bench::switchErrorStudy}};
+        {"kernel", bench::kernelStudy},
+        {"switchError", bench::switchErrorStudy},
+        {"table1", bench::tableOneStudy},
+        {"table2", bench::tableTwoStudy},
+        {"scaling", bench::scalingStudy}};
     const std::string only = args.get("study");
     if (!only.empty() && !known.count(only)) {
         std::string valid;

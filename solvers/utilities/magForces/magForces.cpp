@@ -11,6 +11,7 @@
 #include <magFoam/Error.hpp>
 #include <magFoam/Log.hpp>
 #include <magFoam/MagneticSystem.hpp>
+#include <magFoam/Threads.hpp>
 
 #include <chrono>
 #include <cstdio>
@@ -55,9 +56,10 @@ void writeRow(std::ofstream& csv, const std::string& prefix, const Body& b, cons
 
 int run(const ArgList& args) {
     Case c = Case::read(args.caseDir(), args.schemesFile());
+    const int threads = setThreads(args, c);
     MagneticSystem system(c);
-    spdlog::info("magForces: case {}, {} bodies, field: {}", args.caseDir().string(), c.bodies().size(),
-                 system.fieldEvaluator().describe());
+    spdlog::info("magForces: case {}, {} bodies, {} thread(s), field: {}", args.caseDir().string(), c.bodies().size(),
+                 threads, system.fieldEvaluator().describe());
 
     const auto forcesFile = c.dir() / "system/forcesDict.yaml";
     std::optional<Sweep> sweep;

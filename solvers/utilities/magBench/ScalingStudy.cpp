@@ -1,0 +1,100 @@
+// scaling: cost of the wrenches of one step against the number of magnets, for
+// the hybrid (near MBM, far EDM, dipole pairs beyond dipoleRatio (R1 + R2)).
+// N 1 cm cubes, 1 T, random orientations, placed at random (fixed seed) in a cube
+// whose edge grows as N^(1/3), so the number density stays constant (one magnet per
+// spacing^3) and most pairs of a large scene are far; no two bounding spheres overlap.
+//
+//   scaling:
+//     bodies: [2, 5, 10, 20, 50, 100, 200, 500, 1000]
+//     spacing: 0.03                    # m, box edge = spacing N^(1/3)
+//     field: "{type: hybrid, near: {type: MBM, quadrature: {type: gauss, n: 6}}}"
+//     threads: [1, 0]                  # 0 = all cores
+//     minSeconds: 0.05                 # timing per run (at least one call); the best
+//     repeats: 2                       #   of `repeats` runs
+//     seed: 1
+#include "BenchCommon.hpp"
+#include "Studies.hpp"
+#include "ThreadStudies.hpp"
+
+#include <magFoam/Error.hpp>
+#include <magFoam/InductionModel.hpp>
+#include <magFoam/Log.hpp>
+#include <magFoam/MagneticSystem.hpp>
+
+#include <random>
+#include <regex>
+
+namespace mag::bench {
+
+namespace {
+
+std::vector<Body> scatteredCubes(int n, double spacing, unsigned seed) {
+    const double edge = 0.01;
+    const double minDistance = 1.05 * edge * std::sqrt(3.0);  // bounding spheres apart
+    const double box = spacing * std::cbrt(static_cast<double>(n));
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(-0.5, 0.5);
+    std::normal_distribution<double> g;
+    std::vector<Body> out;
+    for (int i = 0, tries = 0; i < n; ++tries) {
+        if (tries > 1000 * n) throw InputError(fmt::format("scaling: cannot place {} cubes; raise spacing", n));
+        const Vec3 p = box * Vec3(u(rng), u(rng), u(rng));
+        bool free = true;
+        for (const Body& b : out) free = free && (b.position - p).norm() > minDistance;
+        if (!free) continue;
+        const Quat q = Quat(g(rng), g(rng), g(rng), g(rng)).normalized();  // uniform random rotation
+        out.push_back(cube(fmt::format("m{}", i++), edge, 1.0, p, q));
+    }
+    return out;
+}
+
+// Pair decisions of one wrenches call, from the hybrid's describe() counters.
+struct PairCounts {
+    long nearPairs = -1, farPairs = -1, dipolePairs = -1;
+};
+PairCounts pairCounts(const FieldEvaluator& f) {
+    std::smatch m;
+    const std::string s = f.describe();
+    PairCounts c;
+    if (std::regex_search(s, m, std::regex("dipole pairs ([0-9]+); pairs near ([0-9]+) far ([0-9]+)")))
+        c = {std::stol(m[2]), std::stol(m[3]), std::stol(m[1])};
+    return c;
+}
+
+} // namespace
+
+void scalingStudy(const Dict& study, const std::filesystem::path& caseDir) {
+    const auto ns = study.get<std::vector<double>>("bodies", {2, 5, 10, 20, 50, 100, 200, 500, 1000});
+    const double spacing = study.get<double>("spacing", 0.03);
+    const std::string field =
+        study.get<std::string>("field", "{type: hybrid, near: {type: MBM, quadrature: {type: gauss, n: 6}}}");
+    const auto counts = threadCounts(study);
+    const double minSeconds = study.get<double>("minSeconds", 0.05);
+    const int repeats = study.get<int>("repeats", 2);
+    const int seed = study.get<int>("seed", 1);
+    if (!(spacing >= 0.02)) study.fail("spacing", "spacing must be >= 0.02 m (the cubes are 1 cm)");
+    if (repeats < 1) study.fail("repeats", "repeats must be >= 1");
+    study.reportUnused();
+
+    const RestoreThreads restore;
+    auto csv = openCsv(caseDir, "scaling.csv", "bodies,threads,msPerStep,nearPairs,farPairs,dipolePairs");
+    for (double nd : ns) {
+        const int n = static_cast<int>(nd);
+        const std::vector<Body> bodies = scatteredCubes(n, spacing, static_cast<unsigned>(seed));
+        // Counts from a fresh evaluator's first call; that call also builds the tables.
+        const MagneticSystem system(evaluator(field), InductionModel::New(Dict::fromString("type: none\n", "scaling")));
+        (void)system.wrenches(bodies, true);
+        const PairCounts pc = pairCounts(system.fieldEvaluator());
+        for (int t : counts) {
+            setThreads(t);
+            const double ms =
+                1e3 * bestSecondsPerCall([&] { (void)system.wrenches(bodies, true); }, minSeconds, repeats);
+            csv << n << ',' << t << ',' << ms << ',' << pc.nearPairs << ',' << pc.farPairs << ',' << pc.dipolePairs
+                << '\n';
+            spdlog::info("  N={:<5} threads {}  {:10.4f} ms per step  pairs near {} far {} dipole {}", n, t, ms,
+                         pc.nearPairs, pc.farPairs, pc.dipolePairs);
+        }
+    }
+}
+
+} // namespace mag::bench

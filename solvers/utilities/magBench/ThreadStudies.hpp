@@ -1,0 +1,77 @@
+// Shared pieces of the timing studies table1, table2 and scaling: the thread
+// counts to time, the thread count restored afterwards, robust timing, the MBM
+// sample count.
+#pragma once
+
+#include "PolyhedronTables.hpp"
+#include "SurfaceQuadrature.hpp"
+
+#include <magFoam/Body.hpp>
+#include <magFoam/Dictionary.hpp>
+#include <magFoam/Threads.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <vector>
+
+namespace mag::bench {
+
+// `threads: [1, 0]` of the study (0 = all cores), each count once, in order.
+inline std::vector<int> threadCounts(const Dict& study) {
+    std::vector<int> out;
+    for (double t : study.get<std::vector<double>>("threads", {1, 0})) {
+        if (!(t >= 0) || t != std::floor(t))
+            study.fail("threads", "thread counts must be integers >= 0 (0 = all cores)");
+        const int n = t == 0 ? availableCores() : static_cast<int>(t);
+        if (std::find(out.begin(), out.end(), n) == out.end()) out.push_back(n);
+    }
+    return out;
+}
+
+// The studies change the thread count; the next study gets the app's back.
+struct RestoreThreads {
+    int n = threads();
+    ~RestoreThreads() { setThreads(n); }
+};
+
+// Seconds per call of f: the best of `repeats` runs of at least minSeconds each
+// (after one warm-up call). The best, not the mean: on a machine shared with other
+// jobs, slices lost to them only ever add time.
+inline double bestSecondsPerCall(const std::function<void()>& f, double minSeconds, int repeats) {
+    using clock = std::chrono::steady_clock;
+    f();
+    double best = std::numeric_limits<double>::infinity();
+    for (int r = 0; r < std::max(repeats, 1); ++r) {
+        long calls = 0;
+        const auto t0 = clock::now();
+        double elapsed = 0;
+        do {
+            f();
+            ++calls;
+            elapsed = std::chrono::duration<double>(clock::now() - t0).count();
+        } while (elapsed < minSeconds);
+        best = std::min(best, elapsed / static_cast<double>(calls));
+    }
+    return best;
+}
+
+// Boundary samples MBM takes on `shape` under the evaluator dictionary `field`
+// (type MBM, or a hybrid's near model); 0 when MBM samples nothing.
+inline std::size_t mbmSamples(const Dict& field, const Shape& shape) {
+    const std::string type = field.get<std::string>("type");
+    if (type == "hybrid") {
+        const Dict near = field.has("near") ? field.sub("near") : Dict::fromString("type: MBM\n", "hybrid near");
+        return mbmSamples(near, shape);
+    }
+    if (type != "MBM") return 0;
+    const Dict q = field.subOrEmpty("quadrature");
+    const mbm::PolyhedronTables tables(shape.mesh.vertices, shape.mesh.triangles);
+    return mbm::buildSurfaceQuadrature(tables, mbm::quadratureRuleFromName(q.get<std::string>("type", "gauss")),
+                                       q.get<int>("n", 10))
+        .size();
+}
+
+} // namespace mag::bench
