@@ -84,6 +84,25 @@ TEST_CASE("fig8 short: paperclips end attached, induction converges every step, 
     // Every step's induction converged: magFoam warns for each step that did not.
     CHECK(log.find("not converged") == std::string::npos);
     CHECK(log.find("induction unconverged") == std::string::npos);
+    // ... and postProcessing/induction.csv has one converged row per step.
+    {
+        std::ifstream ind(c.path("postProcessing/induction.csv"));
+        std::string row;
+        std::getline(ind, row);
+        CHECK(row == "step,time,iterations,residual,converged");
+        int rows = 0, converged = 0, maxSweeps = 0;
+        while (std::getline(ind, row)) {
+            long step;
+            double t, residual;
+            int sweeps, ok;
+            REQUIRE(std::sscanf(row.c_str(), "%ld,%lf,%d,%lf,%d", &step, &t, &sweeps, &residual, &ok) == 5);
+            ++rows, converged += ok, maxSweeps = std::max(maxSweeps, sweeps);
+            CHECK(residual < 1e-6);  // the case's LLG tolerance (units of Ms)
+        }
+        INFO("most sweeps in a step: " << maxSweeps);
+        CHECK(rows == 1200);
+        CHECK(converged == rows);
+    }
 
     // Energy: the total (kinetic + gravitational + magnetic) never rises above
     // its start by more than ODE's capped push-out of a penetration can add,

@@ -14,6 +14,7 @@
 #include <magFoam/Threads.hpp>
 
 #include <chrono>
+#include <fstream>
 #include <cmath>
 #include <csignal>
 
@@ -40,6 +41,31 @@ const Body* firstNonFinite(const std::vector<Body>& bodies, const std::vector<Wr
         if (!ok) return &b;
     }
     return nullptr;
+}
+
+// postProcessing/induction.csv: one row per step with soft bodies (step, time,
+// sweeps, final residual in units of Ms, converged 0/1). On a restart the rows
+// after the restart time are dropped, as ResultsWriter does with its files.
+std::ofstream openInductionLog(const std::filesystem::path& caseDir, std::optional<double> restartTime) {
+    const auto file = caseDir / "postProcessing/induction.csv";
+    std::filesystem::create_directories(file.parent_path());
+    std::vector<std::string> keep;
+    if (restartTime && std::filesystem::exists(file)) {
+        std::ifstream in(file);
+        std::string line;
+        std::getline(in, line);  // header
+        while (std::getline(in, line)) {
+            const auto c1 = line.find(','), c2 = line.find(',', c1 + 1);
+            if (c1 == std::string::npos || c2 == std::string::npos) continue;
+            if (std::stod(line.substr(c1 + 1, c2 - c1 - 1)) <= *restartTime + 1e-12) keep.push_back(line);
+        }
+    }
+    std::ofstream out(file, std::ios::trunc);
+    if (!out) throw InputError(file.string() + ": cannot write");
+    out << "step,time,iterations,residual,converged\n";
+    for (const auto& l : keep) out << l << '\n';
+    out.precision(12);
+    return out;
 }
 
 // Everything the writers need at a write time: full wrenches and energies.
@@ -90,6 +116,12 @@ int run(const ArgList& args) {
     auto lastReport = start;
     double magneticSeconds = 0, rigidSeconds = 0;
     long unconvergedSteps = 0, k = 0;
+    // Induction statistics: per step to induction.csv, summed for the log lines.
+    const bool soft = c.hasSoftBodies();
+    std::ofstream inductionLog;
+    if (soft) inductionLog = openInductionLog(c.dir(), restartTime);
+    long sweepsTotal = 0, sweepsSinceReport = 0, stepsSinceReport = 0;
+    int sweepsMax = 0;
     std::vector<Body> lastGood;  // kept to write on a non-finite state; reused storage
     for (k = 1; k <= nSteps; ++k) {
         const long step = step0 + k;
@@ -99,6 +131,12 @@ int run(const ArgList& args) {
         const auto tm = Clock::now();
         const MagneticSystem::Step magnetic = magnets.step(bodies);
         const InductionReport& ind = magnetic.induction;
+        if (soft) {
+            inductionLog << step << ',' << t0 + k * dt << ',' << ind.iterations << ',' << ind.residual << ','
+                         << (ind.converged ? 1 : 0) << '\n';
+            sweepsTotal += ind.iterations, sweepsSinceReport += ind.iterations, ++stepsSinceReport;
+            sweepsMax = std::max(sweepsMax, ind.iterations);
+        }
         if (!ind.converged) {
             ++unconvergedSteps;
             std::string names;
@@ -130,7 +168,12 @@ int run(const ArgList& args) {
         if (seconds(lastReport) > 5.0) {
             lastReport = Clock::now();
             const double rate = k / seconds(start);
-            spdlog::info("t = {:.6g} s  step {}  {:.1f} steps/s  ETA {:.0f} s", t, step, rate, (nSteps - k) / rate);
+            std::string induction;
+            if (soft && stepsSinceReport > 0)
+                induction = fmt::format("  induction {:.1f} sweeps/step", double(sweepsSinceReport) / stepsSinceReport);
+            sweepsSinceReport = stepsSinceReport = 0;
+            spdlog::info("t = {:.6g} s  step {}  {:.1f} steps/s  ETA {:.0f} s{}", t, step, rate, (nSteps - k) / rate,
+                         induction);
         }
     }
     const long done = std::min(k, nSteps);
@@ -139,6 +182,9 @@ int run(const ArgList& args) {
                      seconds(start), 1e3 * magneticSeconds / done, 1e3 * rigidSeconds / done,
                      unconvergedSteps ? "; induction unconverged in " + std::to_string(unconvergedSteps) + " steps"
                                       : std::string());
+    if (soft && done > 0)
+        spdlog::info("  induction: {:.2f} sweeps per step on average, {} at most (postProcessing/induction.csv)",
+                     double(sweepsTotal) / done, sweepsMax);
     spdlog::info("  field: {}", magnets.fieldEvaluator().describe());
     return 0;
 }
