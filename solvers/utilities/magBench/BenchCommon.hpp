@@ -26,6 +26,10 @@ std::unique_ptr<FieldEvaluator> evaluator(const std::string& yaml);
 
 // Seconds per call of f, repeated until at least minSeconds have passed.
 double secondsPerCall(const std::function<void()>& f, double minSeconds = 0.05);
+// Seconds per call of f: the best of `repeats` runs of at least minSeconds each
+// (after one warm-up call). The best, not the mean: on a machine shared with other
+// jobs, slices lost to them only ever add time.
+double bestSecondsPerCall(const std::function<void()>& f, double minSeconds, int repeats);
 
 // Exact force on the upper cube of a parallel cuboid pair (Akoun-Yonnet).
 Vec3 exactCubeForce(const Body& lower, const Body& upper);

@@ -3,6 +3,7 @@
 // sample count.
 #pragma once
 
+#include "BenchCommon.hpp"
 #include "PolyhedronTables.hpp"
 #include "SurfaceQuadrature.hpp"
 
@@ -36,27 +37,6 @@ struct RestoreThreads {
     int n = threads();
     ~RestoreThreads() { setThreads(n); }
 };
-
-// Seconds per call of f: the best of `repeats` runs of at least minSeconds each
-// (after one warm-up call). The best, not the mean: on a machine shared with other
-// jobs, slices lost to them only ever add time.
-inline double bestSecondsPerCall(const std::function<void()>& f, double minSeconds, int repeats) {
-    using clock = std::chrono::steady_clock;
-    f();
-    double best = std::numeric_limits<double>::infinity();
-    for (int r = 0; r < std::max(repeats, 1); ++r) {
-        long calls = 0;
-        const auto t0 = clock::now();
-        double elapsed = 0;
-        do {
-            f();
-            ++calls;
-            elapsed = std::chrono::duration<double>(clock::now() - t0).count();
-        } while (elapsed < minSeconds);
-        best = std::min(best, elapsed / static_cast<double>(calls));
-    }
-    return best;
-}
 
 // Boundary samples MBM takes on `shape` under the evaluator dictionary `field`
 // (type MBM, or a hybrid's near model); 0 when MBM samples nothing.
