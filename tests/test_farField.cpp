@@ -10,6 +10,8 @@
 #include <magFoam/MeshPrimitives.hpp>
 #include <magFoam/ShapeFactory.hpp>
 
+#include "bodyFixture.hpp"
+
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -25,33 +27,10 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-std::unique_ptr<mag::FieldEvaluator> field(const std::string& yaml) {
-    return mag::FieldEvaluator::New(mag::Dict::fromString(yaml, "test_farField"));
-}
-
-std::shared_ptr<const mag::Shape> box(const Vec3& size) {
-    mag::ShapeKind kind;
-    kind.kind = mag::ShapeKind::Kind::box;
-    kind.size = size;
-    return mag::makeShape(mag::makeBox(size), kind);
-}
-
-Body magnet(const std::string& name, std::shared_ptr<const mag::Shape> shape, const Vec3& position, const Vec3& dir,
-            const Quat& q) {
-    Body b;
-    b.name = name;
-    b.shape = std::move(shape);
-    b.material.Br = 1.0;
-    b.material.density = 7500;
-    b.magnetizationBody = dir.normalized() / mag::mu0;
-    b.position = position;
-    b.orientation = q;
-    return b;
-}
-
-Quat rotation(double degrees, const Vec3& axis) {
-    return Quat(Eigen::AngleAxisd(degrees * mag::pi / 180, axis.normalized()));
-}
+using magtest::field;
+using magtest::magnet;
+using magtest::axisAngle;
+using magtest::boxShape;
 
 // Source at the origin, target at distance k (R1 + R2) along an oblique direction;
 // both tilted, magnetized off their axes, so that no symmetry hides an error term.
@@ -59,8 +38,8 @@ std::pair<Body, Body> pairAt(const std::shared_ptr<const mag::Shape>& s, const s
                              double k) {
     const Vec3 dir = Vec3(0.3, -0.5, 0.8).normalized();
     const double d = k * (s->boundingRadius + t->boundingRadius);
-    return {magnet("source", s, Vec3::Zero(), Vec3(0.2, 0.1, 1), rotation(25, Vec3(1, 2, 0))),
-            magnet("target", t, d * dir, Vec3(-0.3, 0.4, 1), rotation(-40, Vec3(0, 1, 3)))};
+    return {magnet("source", s, Vec3::Zero(), Vec3(0.2, 0.1, 1), axisAngle(25, Vec3(1, 2, 0))),
+            magnet("target", t, d * dir, Vec3(-0.3, 0.4, 1), axisAngle(-40, Vec3(0, 1, 3)))};
 }
 
 double relErr(const Vec3& a, const Vec3& ref) { return (a - ref).norm() / ref.norm(); }
@@ -82,7 +61,7 @@ Errors dipoleError(const std::shared_ptr<const mag::Shape>& s, const std::shared
 } // namespace
 
 TEST_CASE("dipole tier: two cubes converge as (R/d)^4", "[hybrid][farField]") {
-    const auto cube = box(Vec3::Constant(0.01));
+    const auto cube = boxShape(Vec3::Constant(0.01));
     const Errors e2 = dipoleError(cube, cube, 2), e4 = dipoleError(cube, cube, 4), e8 = dipoleError(cube, cube, 8);
     INFO("force errors " << e2.force << " " << e4.force << " " << e8.force << "; torque " << e2.torque << " "
                          << e4.torque << " " << e8.torque);
@@ -95,8 +74,8 @@ TEST_CASE("dipole tier: two cubes converge as (R/d)^4", "[hybrid][farField]") {
 }
 
 TEST_CASE("dipole tier: a bar converges as (R/d)^2", "[hybrid][farField]") {
-    const auto cube = box(Vec3::Constant(0.01));
-    const auto bar = box(Vec3(0.03, 0.01, 0.01));
+    const auto cube = boxShape(Vec3::Constant(0.01));
+    const auto bar = boxShape(Vec3(0.03, 0.01, 0.01));
     const Errors e4 = dipoleError(bar, cube, 4), e8 = dipoleError(bar, cube, 8), e16 = dipoleError(bar, cube, 16);
     INFO("force errors " << e4.force << " " << e8.force << " " << e16.force << "; torque " << e4.torque << " "
                          << e8.torque << " " << e16.torque);
@@ -108,7 +87,7 @@ TEST_CASE("dipole tier: a bar converges as (R/d)^2", "[hybrid][farField]") {
 }
 
 TEST_CASE("dipole tier: default ratio 8, EDM agrees, angular momentum conserved", "[hybrid][farField]") {
-    const auto cube = box(Vec3::Constant(0.01));
+    const auto cube = boxShape(Vec3::Constant(0.01));
     auto hybrid = field("{type: hybrid}");
     auto edm = field("{type: EDM, n: 4}");
     {
@@ -148,8 +127,8 @@ TEST_CASE("dipole tier: default ratio 8, EDM agrees, angular momentum conserved"
 
 TEST_CASE("dipole tier error against MBM (report)", "[hybrid][farField][.report]") {
     // Not a check: prints the numbers quoted in HybridField.cpp and the README.
-    const auto cube = box(Vec3::Constant(0.01));
-    const auto bar = box(Vec3(0.03, 0.01, 0.01));
+    const auto cube = boxShape(Vec3::Constant(0.01));
+    const auto bar = boxShape(Vec3(0.03, 0.01, 0.01));
     std::printf("d/(R1+R2)  cube-cube F   T          bar-cube F   T\n");
     for (double k : {2.0, 4.0, 8.0, 16.0}) {
         const Errors c = dipoleError(cube, cube, k), b = dipoleError(bar, cube, k);

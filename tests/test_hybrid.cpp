@@ -9,6 +9,7 @@
 #include <catch2/catch.hpp>
 
 #include "../modules/fields/hybrid/Gjk.hpp"
+#include "bodyFixture.hpp"
 #include "oracles/akounYonnet.hpp"
 
 #include <magFoam/Body.hpp>
@@ -35,39 +36,11 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-std::unique_ptr<mag::FieldEvaluator> field(const std::string& yaml) {
-    return mag::FieldEvaluator::New(mag::Dict::fromString(yaml, "test_hybrid"));
-}
-
-std::shared_ptr<const mag::Shape> boxShape(const Vec3& size) {
-    mag::ShapeKind kind;
-    kind.kind = mag::ShapeKind::Kind::box;
-    kind.size = size;
-    return mag::makeShape(mag::makeBox(size), kind);
-}
-
-std::shared_ptr<const mag::Shape> sphereShape(double radius, int subdivisions) {
-    mag::ShapeKind kind;
-    kind.kind = mag::ShapeKind::Kind::sphere;
-    kind.radius = radius;
-    return mag::makeShape(mag::makeIcosphere(radius, subdivisions), kind);
-}
-
-Body magnet(const std::string& name, std::shared_ptr<const mag::Shape> shape, const Vec3& position,
-            const Vec3& dir, const Quat& orientation = Quat::Identity()) {
-    Body b;
-    b.name = name;
-    b.shape = std::move(shape);
-    b.material.density = 7500;
-    b.magnetizationBody = dir.normalized() * 1.0 / mag::mu0;
-    b.position = position;
-    b.orientation = orientation.normalized();
-    return b;
-}
-
-Quat axisAngle(double degrees, const Vec3& axis) {
-    return Quat(Eigen::AngleAxisd(degrees * mag::pi / 180.0, axis.normalized()));
-}
+using magtest::axisAngle;
+using magtest::boxShape;
+using magtest::field;
+using magtest::magnet;
+using magtest::sphereShape;
 
 double relErr(const Vec3& a, const Vec3& ref) { return (a - ref).norm() / ref.norm(); }
 
