@@ -89,13 +89,13 @@ TEST_CASE("fig8 short: paperclips end attached, induction converges every step, 
         std::ifstream ind(c.path("postProcessing/induction.csv"));
         std::string row;
         std::getline(ind, row);
-        CHECK(row == "step,time,iterations,residual,converged");
+        CHECK(row == "time,step,iterations,residual,converged");
         int rows = 0, converged = 0, maxSweeps = 0;
         while (std::getline(ind, row)) {
-            long step;
             double t, residual;
+            long step;
             int sweeps, ok;
-            REQUIRE(std::sscanf(row.c_str(), "%ld,%lf,%d,%lf,%d", &step, &t, &sweeps, &residual, &ok) == 5);
+            REQUIRE(std::sscanf(row.c_str(), "%lf,%ld,%d,%lf,%d", &t, &step, &sweeps, &residual, &ok) == 5);
             ++rows, converged += ok, maxSweeps = std::max(maxSweeps, sweeps);
             CHECK(residual < 1e-6);  // the case's LLG tolerance (units of Ms)
         }

@@ -106,7 +106,7 @@ void vec(std::ostream& os, const Vec3& v) {
 } // namespace
 
 ResultsWriter::ResultsWriter(const std::filesystem::path& caseDir, std::optional<double> restartTime)
-    : dir_(caseDir) {
+    : dir_(caseDir), restartTime_(restartTime) {
     const auto post = dir_ / "postProcessing";
     std::filesystem::create_directories(post);
     std::filesystem::create_directories(dir_ / "VTK");
@@ -125,6 +125,17 @@ ResultsWriter::ResultsWriter(const std::filesystem::path& caseDir, std::optional
     bodiesCsv_ = openCsv(post / "bodies.csv",
                          "time,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,Fx,Fy,Fz,Tx,Ty,Tz", restartTime.has_value());
     energyCsv_ = openCsv(post / "energy.csv", "time,kinetic,gravitational,magnetic,total", restartTime.has_value());
+}
+
+void ResultsWriter::writeInduction(double time, long step, const InductionReport& report) {
+    if (!inductionCsv_.is_open()) {
+        const auto file = dir_ / "postProcessing/induction.csv";
+        if (restartTime_) truncateCsv(file, *restartTime_);
+        inductionCsv_ = openCsv(file, "time,step,iterations,residual,converged", restartTime_.has_value());
+        inductionCsv_.precision(12);
+    }
+    inductionCsv_ << time << ',' << step << ',' << report.iterations << ',' << report.residual << ','
+                  << (report.converged ? 1 : 0) << '\n';
 }
 
 void ResultsWriter::write(double time, long step, const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches,

@@ -14,7 +14,6 @@
 #include <magFoam/Threads.hpp>
 
 #include <chrono>
-#include <fstream>
 #include <cmath>
 #include <csignal>
 
@@ -41,31 +40,6 @@ const Body* firstNonFinite(const std::vector<Body>& bodies, const std::vector<Wr
         if (!ok) return &b;
     }
     return nullptr;
-}
-
-// postProcessing/induction.csv: one row per step with soft bodies (step, time,
-// sweeps, final residual in units of Ms, converged 0/1). On a restart the rows
-// after the restart time are dropped, as ResultsWriter does with its files.
-std::ofstream openInductionLog(const std::filesystem::path& caseDir, std::optional<double> restartTime) {
-    const auto file = caseDir / "postProcessing/induction.csv";
-    std::filesystem::create_directories(file.parent_path());
-    std::vector<std::string> keep;
-    if (restartTime && std::filesystem::exists(file)) {
-        std::ifstream in(file);
-        std::string line;
-        std::getline(in, line);  // header
-        while (std::getline(in, line)) {
-            const auto c1 = line.find(','), c2 = line.find(',', c1 + 1);
-            if (c1 == std::string::npos || c2 == std::string::npos) continue;
-            if (std::stod(line.substr(c1 + 1, c2 - c1 - 1)) <= *restartTime + 1e-12) keep.push_back(line);
-        }
-    }
-    std::ofstream out(file, std::ios::trunc);
-    if (!out) throw InputError(file.string() + ": cannot write");
-    out << "step,time,iterations,residual,converged\n";
-    for (const auto& l : keep) out << l << '\n';
-    out.precision(12);
-    return out;
 }
 
 // Everything the writers need at a write time: full wrenches and energies.
@@ -118,8 +92,6 @@ int run(const ArgList& args) {
     long unconvergedSteps = 0, k = 0;
     // Induction statistics: per step to induction.csv, summed for the log lines.
     const bool soft = c.hasSoftBodies();
-    std::ofstream inductionLog;
-    if (soft) inductionLog = openInductionLog(c.dir(), restartTime);
     long sweepsTotal = 0, sweepsSinceReport = 0, stepsSinceReport = 0;
     int sweepsMax = 0;
     std::vector<Body> lastGood;  // kept to write on a non-finite state; reused storage
@@ -132,8 +104,7 @@ int run(const ArgList& args) {
         const MagneticSystem::Step magnetic = magnets.step(bodies);
         const InductionReport& ind = magnetic.induction;
         if (soft) {
-            inductionLog << step << ',' << t0 + k * dt << ',' << ind.iterations << ',' << ind.residual << ','
-                         << (ind.converged ? 1 : 0) << '\n';
+            writer.writeInduction(t0 + k * dt, step, ind);
             sweepsTotal += ind.iterations, sweepsSinceReport += ind.iterations, ++stepsSinceReport;
             sweepsMax = std::max(sweepsMax, ind.iterations);
         }

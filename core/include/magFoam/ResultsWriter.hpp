@@ -10,6 +10,7 @@
 #pragma once
 
 #include "magFoam/Body.hpp"
+#include "magFoam/InductionModel.hpp"
 #include "magFoam/FieldEvaluator.hpp"
 
 #include <filesystem>
@@ -52,12 +53,18 @@ public:
     void write(double time, long step, const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches,
                const Energies& energies);
 
+    // One row of postProcessing/induction.csv (time,step,iterations,residual,
+    // converged) per step of a scene with soft bodies; the file is opened at
+    // the first row (and cut at the restart time like the others).
+    void writeInduction(double time, long step, const InductionReport& report);
+
 private:
     void writeState(double time, long step, const std::vector<Body>& bodies) const;
     void writeVtk(double time, const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches);
 
     std::filesystem::path dir_;
-    std::ofstream bodiesCsv_, energyCsv_;
+    std::optional<double> restartTime_;
+    std::ofstream bodiesCsv_, energyCsv_, inductionCsv_;
     std::vector<std::pair<double, std::string>> series_;  // (time, vtp file) for the .pvd
 };
 
