@@ -1,5 +1,6 @@
 #include "magFoam/MagneticSystem.hpp"
 
+#include "magFoam/DipoleFarField.hpp"
 #include "magFoam/Threads.hpp"
 
 #include <algorithm>
@@ -65,20 +66,31 @@ std::vector<Wrench> MagneticSystem::wrenches(const std::vector<Body>& bodies, bo
         }
         pairs.clear();
     };
+    // Magnetized bodies only; the field evaluator says which pairs are dipole
+    // pairs (far apart against their size): those go to the bulk far field, the
+    // others (found by a grid, not by visiting every pair) one by one.
+    std::vector<std::size_t> index;
+    std::vector<FarFieldBody> active;
     for (std::size_t i = 0; i < bodies.size(); ++i) {
-        for (std::size_t j = i + 1; j < bodies.size(); ++j) {
-            const Body& a = bodies[i];
-            const Body& b = bodies[j];
-            if (a.magnetizationBody.squaredNorm() == 0 || b.magnetizationBody.squaredNorm() == 0) continue;
-            if (a.fixed && b.fixed && skipFixedTargets) continue;
-            // Sample the body that moves (a fixed body needs no wrench);
-            // otherwise the one listed later.
-            const bool targetIsA = b.fixed && !a.fixed;
-            pairs.push_back(targetIsA ? Pair{j, i} : Pair{i, j});
-            if (pairs.size() == kChunk) flush();
-        }
+        const Body& b = bodies[i];
+        if (b.magnetizationBody.squaredNorm() == 0) continue;
+        index.push_back(i);
+        active.push_back({b.position, b.magneticMoment(), field_->dipoleReach(b), b.fixed});
+    }
+    for (const auto& [ai, aj] : nearPairs(active, skipFixedTargets)) {
+        const std::size_t i = index[ai], j = index[aj];
+        // Sample the body that moves (a fixed body needs no wrench);
+        // otherwise the one listed later.
+        const bool targetIsA = bodies[j].fixed && !bodies[i].fixed;
+        pairs.push_back(targetIsA ? Pair{j, i} : Pair{i, j});
+        if (pairs.size() == kChunk) flush();
     }
     flush();
+    std::vector<Wrench> far(active.size());
+    if (const std::uint64_t n = addDipoleFarField(active, skipFixedTargets, far)) {
+        field_->countDipolePairs(n);
+        for (std::size_t a = 0; a < active.size(); ++a) out[index[a]] += far[a];
+    }
     return out;
 }
 

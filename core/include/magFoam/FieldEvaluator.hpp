@@ -11,6 +11,8 @@
 #include "magFoam/Dictionary.hpp"
 #include "magFoam/Registry.hpp"
 
+#include <cstdint>
+#include <limits>
 #include <memory>
 #include <span>
 #include <string>
@@ -45,6 +47,16 @@ public:
 
     // One line for logs: type and main settings.
     virtual std::string describe() const = 0;
+
+    // Far-field tier (DipoleFarField.hpp): a pair of bodies farther apart than
+    // dipoleReach(a) + dipoleReach(b) (centres of mass) interacts as two point
+    // dipoles, and MagneticSystem evaluates all such pairs in bulk instead of
+    // calling interaction(). +inf (the default): never. An evaluator that
+    // returns a finite reach must treat such a pair the same way in its own
+    // interaction() (dipolePairWrench), so that both paths agree.
+    virtual double dipoleReach(const Body&) const { return std::numeric_limits<double>::infinity(); }
+    // The system reports how many pairs it took in bulk (for describe()).
+    virtual void countDipolePairs(std::uint64_t) const {}
 
     // Registry and selection by `type`.
     using Registry = mag::Registry<FieldEvaluator>;

@@ -20,6 +20,9 @@
 // | dipoleRatio      | no       | 8                  | -    | far pairs with centre distance|
 // |                  |          |                    |      | > dipoleRatio (R1 + R2) are   |
 // |                  |          |                    |      | one dipole pair; 0: off       |
+// | dipoleTolerance  | no       | (not set)          | -    | instead of dipoleRatio: reach |
+// |                  |          |                    |      | from each shape's moments, so |
+// |                  |          |                    |      | a dipole pair's error <= this |
 //
 // The switch (per pair; R1, R2 bounding radii about the centres of mass c1, c2):
 //   boundingSphere  gap = |c1 - c2| - R1 - R2, the distance between the bounding
@@ -50,15 +53,20 @@
 // ~0.5 ms for MBM n = 10. A lower threshold trades accuracy for speed: 0.31 switches
 // these cubes at d = 1 cm (EDM n = 2: 0.30 % off), 0 at d = 0.73 cm.
 //
-// Dipole tier (the broad phase of large scenes: most pairs are far, and a dipole pair
-// costs ~0.1 us, pair loop included, against ~1 us for EDM n = 2). A pair the switch
-// calls far, with centre distance d > dipoleRatio (R1 + R2), interacts as two point
-// dipoles m = M V at the centres of mass, r = c_t - c_s (corrected Eq. 5, Eq. 6):
+// Dipole tier (the broad phase of large scenes: most pairs are far). Each body has a
+// reach, k R with k = max(dipoleRatio, 1 + threshold), or with dipoleTolerance the
+// reach that bounds the error estimate by it (dipoleReachFor, DipoleFarField.hpp:
+// ~5 R for cubes at 1e-3, much more for elongated bodies, whose dipole error decays
+// only as d^-2); k >= 1 + threshold keeps every dipole pair far by the switch. A pair
+// with centre distance d > reach_s + reach_t interacts as two point dipoles m = M V
+// at the centres of mass, r = c_t - c_s (corrected Eq. 5, Eq. 6; dipolePairWrench):
 //   F = 3 mu0/(4 pi d^5) [(ms.r) mt + (mt.r) ms + (ms.mt) r - 5 (ms.r)(mt.r) r / d^2]
 //   torque = mt x B_s(c_t), mechanicalTorque = 0 (the dipole sits at the COM),
-//   energy = -mt . B_s(c_t);
-// MagneticSystem gives the source -F and -torque - r x F, which conserves angular
-// momentum exactly as for the other tiers.
+//   energy = -mt . B_s(c_t).
+// MagneticSystem finds these pairs with a grid and sums them in bulk (a few ns a pair
+// instead of ~0.1 us through interaction(); dipoleReach() tells it the reach);
+// interaction() gives the same wrench for a pair called directly.
+// Momentum and angular momentum are conserved to rounding.
 // Error bound. The field of a uniformly magnetized body is -M . grad of the Newtonian
 // potential of its volume, so its multipoles beyond the dipole come from the volume's
 // moments about its centroid (= COM, uniform density): the first moment vanishes, so
@@ -74,8 +82,11 @@
 //   d / (R1 + R2)               2        4        8        16
 //   two 1 cm cubes           3.2e-3   2.0e-4   1.3e-5   8.0e-7    (d^-4)
 //   3 x 1 x 1 cm bar, cube   1.2e-1   2.9e-2   7.3e-3   1.8e-3    (d^-2)
-// (torques alike). At the default 8 this is far below the error of the near pairs of
-// a scene, whose forces are larger by (d_far / d_near)^4.
+// (torques alike); over random orientations, against the scale of a dipole pair's
+// force, the estimate of DipoleFarField.hpp bounds them. At the default ratio 8 the
+// cubes' error is far below that of a scene's near pairs (whose forces are larger by
+// (d_far / d_near)^4), an elongated body's is not: dipoleTolerance puts each shape's
+// pairs where its own error allows.
 //
 // Counters: near/far decisions for pairs and for evaluate() points are counted
 // (atomics, all threads), dipole pairs too, and logged at debug level per pair;
@@ -83,6 +94,7 @@
 // are read-only after construction apart from the atomic counters.
 #include "Gjk.hpp"
 
+#include <magFoam/DipoleFarField.hpp>
 #include <magFoam/FieldEvaluator.hpp>
 
 #include <spdlog/spdlog.h>
@@ -91,6 +103,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <sstream>
 #include <vector>
 
@@ -111,9 +124,19 @@ public:
         threshold_ = s.get<double>("threshold", 1.0);
         if (!(threshold_ >= 0)) s.fail("threshold", "hybrid switch threshold must be >= 0 (a factor of the bounding radius)");
         s.reportUnused();
-        dipoleRatio_ = d.get<double>("dipoleRatio", 8.0);
-        if (!(dipoleRatio_ >= 0))
-            d.fail("dipoleRatio", "hybrid dipoleRatio must be >= 0 (a factor of R1 + R2; 0 turns the dipole tier off)");
+        if (d.has("dipoleTolerance")) {
+            if (d.has("dipoleRatio"))
+                d.fail("dipoleRatio", "give either dipoleRatio or dipoleTolerance, not both");
+            dipoleTolerance_ = d.get<double>("dipoleTolerance");
+            if (!(dipoleTolerance_ > 0 && dipoleTolerance_ < 1))
+                d.fail("dipoleTolerance", "hybrid dipoleTolerance must be in (0, 1) (the dipole pairs' error bound)");
+            dipoleRatio_ = 0;
+        } else {
+            dipoleRatio_ = d.get<double>("dipoleRatio", 8.0);
+            if (!(dipoleRatio_ >= 0))
+                d.fail("dipoleRatio",
+                       "hybrid dipoleRatio must be >= 0 (a factor of R1 + R2; 0 turns the dipole tier off)");
+        }
     }
 
     void evaluate(const Body& source, std::span<const Vec3> points, std::span<Vec3> B, std::span<Vec3> A,
@@ -144,15 +167,15 @@ public:
     }
 
     Wrench interaction(const Body& source, const Body& target) const override {
+        if (isDipolePair(farFieldBody(source), farFieldBody(target))) {
+            dipolePairs_.fetch_add(1, std::memory_order_relaxed);
+            spdlog::debug("hybrid: '{}' -> '{}': dipole pair", source.name, target.name);
+            return dipolePairWrench(source.magneticMoment(), target.magneticMoment(), target.position - source.position);
+        }
         const double distance = (target.position - source.position).norm();
         const double gap = this->gap(source, target, distance);
         const double Rs = source.shape->boundingRadius, Rt = target.shape->boundingRadius;
         const bool isNear = gap < threshold_ * std::max(Rs, Rt);
-        if (!isNear && dipoleRatio_ > 0 && distance > dipoleRatio_ * (Rs + Rt)) {
-            dipolePairs_.fetch_add(1, std::memory_order_relaxed);
-            spdlog::debug("hybrid: '{}' -> '{}': distance {:g} m -> dipole", source.name, target.name, distance);
-            return dipolePair(source, target);
-        }
         (isNear ? nearPairs_ : farPairs_).fetch_add(1, std::memory_order_relaxed);
         spdlog::debug("hybrid: '{}' -> '{}': {} gap {:g} m -> {}", source.name, target.name, switchName_, gap,
                       isNear ? "near" : "far");
@@ -162,33 +185,36 @@ public:
     std::string describe() const override {
         // The counters stay last: tests and scripts read "pairs near N far N; points ...".
         std::ostringstream os;
-        os << "hybrid (switch " << switchName_ << ", threshold " << threshold_ << ", dipoleRatio " << dipoleRatio_
+        os << "hybrid (switch " << switchName_ << ", threshold " << threshold_;
+        if (dipoleTolerance_ > 0)
+            os << ", dipoleTolerance " << dipoleTolerance_;
+        else
+            os << ", dipoleRatio " << dipoleRatio_;
+        os
            << "; near: " << near_->describe() << "; far: " << far_->describe() << "; dipole pairs " << dipolePairs_
            << "; pairs near " << nearPairs_ << " far " << farPairs_ << "; points near " << nearPoints_ << " far "
            << farPoints_ << ")";
         return os.str();
     }
 
+    // Dipole pairs have centre distance > reach_s + reach_t, reach = k R with
+    // k = max(dipoleRatio, 1 + threshold): such a pair is also far by the switch
+    // (gap >= k (Rs + Rt) - Rs - Rt >= threshold max(Rs, Rt), and the GJK gap is
+    // never below the bounding-sphere gap).
+    double dipoleReach(const Body& b) const override {
+        const double R = b.shape->boundingRadius;
+        if (dipoleTolerance_ > 0) return std::max(dipoleReachFor(*b.shape, dipoleTolerance_), (1.0 + threshold_) * R);
+        if (dipoleRatio_ <= 0) return std::numeric_limits<double>::infinity();
+        return std::max(dipoleRatio_, 1.0 + threshold_) * R;
+    }
+    void countDipolePairs(std::uint64_t n) const override { dipolePairs_.fetch_add(n, std::memory_order_relaxed); }
+
     // Decisions so far (pairs).
     std::uint64_t nearCount() const { return nearPairs_; }
     std::uint64_t farCount() const { return farPairs_; }
 
 private:
-    // Two point dipoles m = M V at the centres of mass (see the header).
-    static Wrench dipolePair(const Body& source, const Body& target) {
-        constexpr double kMu = mu0 / (4.0 * pi);
-        const Vec3 ms = source.magneticMoment(), mt = target.magneticMoment();
-        const Vec3 r = target.position - source.position;
-        const double inv2 = 1.0 / r.squaredNorm();
-        const double inv3 = inv2 * std::sqrt(inv2);
-        const double msr = ms.dot(r), mtr = mt.dot(r);
-        const Vec3 B = kMu * inv3 * (3.0 * msr * inv2 * r - ms);
-        Wrench w;
-        w.force = 3.0 * kMu * inv3 * inv2 * ((mtr * ms + msr * mt) + ms.dot(mt) * r - 5.0 * msr * mtr * inv2 * r);
-        w.torque = mt.cross(B);
-        w.energy = -mt.dot(B);
-        return w;
-    }
+    FarFieldBody farFieldBody(const Body& b) const { return {b.position, Vec3::Zero(), dipoleReach(b), b.fixed}; }
 
     // Gap between the two bodies as the switch measures it (m); `distance`
     // between their centres of mass.
@@ -208,6 +234,7 @@ private:
     bool gjk_ = false;
     double threshold_ = 1.0;
     double dipoleRatio_ = 8.0;
+    double dipoleTolerance_ = 0;  // > 0: reach from the shapes (dipoleReachFor)
     mutable std::atomic<std::uint64_t> nearPairs_{0}, farPairs_{0}, dipolePairs_{0}, nearPoints_{0}, farPoints_{0};
 };
 

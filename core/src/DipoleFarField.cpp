@@ -1,0 +1,194 @@
+#include "magFoam/DipoleFarField.hpp"
+
+#include "magFoam/Threads.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <unordered_map>
+
+// Compiled with -ffp-contract=off (core/CMakeLists.txt): the pair test
+// d^2 > (reach_i + reach_j)^2 must round the same in the grid search, in every
+// vector lane of the bulk sum, and for (i, j) as for (j, i), or a pair at the
+// boundary could be counted as both near and far, or as neither. And with
+// -fno-math-errno -fno-trapping-math, without which GCC leaves the bulk loop
+// scalar (sqrt might set errno, a comparison might trap); results are the same.
+
+namespace mag {
+
+namespace {
+constexpr double kMu = mu0 / (4.0 * pi);
+}
+
+Wrench dipolePairWrench(const Vec3& ms, const Vec3& mt, const Vec3& r) {
+    const double inv2 = 1.0 / r.squaredNorm();
+    const double inv3 = inv2 * std::sqrt(inv2);
+    const double msr = ms.dot(r), mtr = mt.dot(r);
+    const Vec3 B = kMu * inv3 * (3.0 * msr * inv2 * r - ms);
+    Wrench w;
+    w.force = 3.0 * kMu * inv3 * inv2 * ((mtr * ms + msr * mt) + ms.dot(mt) * r - 5.0 * msr * mtr * inv2 * r);
+    w.torque = mt.cross(B);
+    w.energy = -mt.dot(B);
+    return w;
+}
+
+namespace {
+constexpr double kC2 = 12.0, kC4 = 0.3;  // see the header
+}
+
+double shapeQuadrupole(const Shape& shape) {
+    // J = tr(I)/2 1 - I for the unit-density inertia I, so Q = 3 J - tr(J) 1 = tr(I) 1 - 3 I.
+    const Mat3 Q = shape.unitInertia.trace() * Mat3::Identity() - 3.0 * shape.unitInertia;
+    return Q.norm() / shape.volume;
+}
+
+double dipoleErrorEstimate(const Shape& source, const Shape& target, double distance) {
+    const double x = (source.boundingRadius + target.boundingRadius) / distance;
+    return kC2 * (shapeQuadrupole(source) + shapeQuadrupole(target)) / (distance * distance) + kC4 * x * x * x * x;
+}
+
+double dipoleReachFor(const Shape& shape, double tol) {
+    return std::sqrt(2.0 * kC2 / tol) * std::sqrt(shapeQuadrupole(shape)) +
+           std::sqrt(std::sqrt(2.0 * kC4 / tol)) * shape.boundingRadius;
+}
+
+namespace {
+
+// |c_i - c_j|^2, component differences taken i minus j: the same bits for (j, i).
+double distance2(const FarFieldBody& a, const FarFieldBody& b) {
+    const double rx = a.position.x() - b.position.x(), ry = a.position.y() - b.position.y(),
+                 rz = a.position.z() - b.position.z();
+    return rx * rx + ry * ry + rz * rz;
+}
+
+} // namespace
+
+bool isDipolePair(const FarFieldBody& a, const FarFieldBody& b) {
+    const double lim = a.reach + b.reach;
+    return distance2(a, b) > lim * lim;
+}
+
+std::vector<std::pair<std::size_t, std::size_t>> nearPairs(std::span<const FarFieldBody> bodies,
+                                                           bool skipFixedPairs) {
+    const std::size_t n = bodies.size();
+    std::vector<std::pair<std::size_t, std::size_t>> out;
+    auto consider = [&](std::size_t i, std::size_t j) {
+        if (i > j) std::swap(i, j);
+        if (skipFixedPairs && bodies[i].fixed && bodies[j].fixed) return;
+        if (!isDipolePair(bodies[i], bodies[j])) out.emplace_back(i, j);
+    };
+    // Bodies that are never dipole pairs pair with everyone; the others go in a
+    // grid whose cell (2 max reach) holds any near partner in the 27 cells around.
+    std::vector<std::size_t> always, gridded;
+    double maxReach = 0, extent = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (std::isfinite(bodies[i].reach) && bodies[i].position.allFinite()) {
+            gridded.push_back(i);
+            maxReach = std::max(maxReach, bodies[i].reach);
+            extent = std::max(extent, bodies[i].position.cwiseAbs().maxCoeff());
+        } else {
+            always.push_back(i);
+        }
+    }
+    for (std::size_t i : always)
+        for (std::size_t j = 0; j < n; ++j)
+            if (j != i) consider(i, j);
+    // At most ~1e6 cells per axis across the scene: the cell coordinates then stay
+    // small integers, and pairs of zero reach still find each other (same cell).
+    const double cell = std::max(2.0 * maxReach, 2e-6 * extent + std::numeric_limits<double>::min());
+    using Key = std::array<std::int64_t, 3>;
+    struct KeyHash {
+        std::size_t operator()(const Key& k) const {
+            return static_cast<std::size_t>(k[0] * 73856093LL ^ k[1] * 19349663LL ^ k[2] * 83492791LL);
+        }
+    };
+    auto keyOf = [&](const Vec3& p) {
+        return Key{static_cast<std::int64_t>(std::floor(p.x() / cell)), static_cast<std::int64_t>(std::floor(p.y() / cell)),
+                   static_cast<std::int64_t>(std::floor(p.z() / cell))};
+    };
+    std::unordered_map<Key, std::vector<std::size_t>, KeyHash> grid;
+    for (std::size_t i : gridded) grid[keyOf(bodies[i].position)].push_back(i);
+    for (std::size_t i : gridded) {
+        const Key k = keyOf(bodies[i].position);
+        for (int dx = -1; dx <= 1; ++dx)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dz = -1; dz <= 1; ++dz) {
+                    const auto it = grid.find(Key{k[0] + dx, k[1] + dy, k[2] + dz});
+                    if (it == grid.end()) continue;
+                    for (std::size_t j : it->second)
+                        if (j > i) consider(i, j);
+                }
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());  // pairs of two `always` bodies come twice
+    return out;
+}
+
+std::uint64_t addDipoleFarField(std::span<const FarFieldBody> bodies, bool skipFixedPairs, std::span<Wrench> out) {
+    const std::size_t n = bodies.size();
+    if (n < 2 || std::none_of(bodies.begin(), bodies.end(), [](const auto& b) { return std::isfinite(b.reach); }))
+        return 0;
+    // Structure of arrays: the inner loop runs over targets, one per vector lane.
+    std::vector<double> x(n), y(n), z(n), mx(n), my(n), mz(n), reach(n), fixed(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const auto& b = bodies[i];
+        x[i] = b.position.x(), y[i] = b.position.y(), z[i] = b.position.z();
+        mx[i] = b.moment.x(), my[i] = b.moment.y(), mz[i] = b.moment.z();
+        reach[i] = b.reach;
+        fixed[i] = skipFixedPairs && b.fixed ? 1.0 : 0.0;
+    }
+    constexpr std::size_t kBlock = 64;
+    const std::size_t nBlocks = (n + kBlock - 1) / kBlock;
+    std::vector<double> count(nBlocks, 0.0);
+    parallelFor(nBlocks, [&](std::size_t block) {
+        const std::size_t i0 = block * kBlock, m = std::min(kBlock, n - i0);
+        alignas(64) std::array<double, kBlock> fx{}, fy{}, fz{}, tx{}, ty{}, tz{}, e{}, c{};
+        const double *xi = &x[i0], *yi = &y[i0], *zi = &z[i0], *mxi = &mx[i0], *myi = &my[i0], *mzi = &mz[i0],
+                     *ri = &reach[i0], *fi = &fixed[i0];
+        for (std::size_t j = 0; j < n; ++j) {
+            const double xj = x[j], yj = y[j], zj = z[j], sx = mx[j], sy = my[j], sz = mz[j], rj = reach[j],
+                         fj = fixed[j];
+            for (std::size_t k = 0; k < m; ++k) {
+                // Target i = i0 + k, source j, r = c_i - c_j (the pair test as in isDipolePair).
+                const double rx = xi[k] - xj, ry = yi[k] - yj, rz = zi[k] - zj;
+                const double d2 = rx * rx + ry * ry + rz * rz;
+                const double lim = ri[k] + rj;
+                // Other pairs (and i = j) are computed with d^2 = 1 and then
+                // dropped by the selects (a NaN position drops out the same way).
+                const bool far = (d2 > lim * lim) & (fi[k] * fj == 0.0);
+                const double inv2 = 1.0 / (far ? d2 : 1.0);
+                const double inv3 = inv2 * std::sqrt(inv2);
+                const double tmx = mxi[k], tmy = myi[k], tmz = mzi[k];
+                const double msr = sx * rx + sy * ry + sz * rz, mtr = tmx * rx + tmy * ry + tmz * rz;
+                const double mm = sx * tmx + sy * tmy + sz * tmz;
+                // B of the source at the target.
+                const double b3 = 3.0 * msr * inv2, kb = kMu * inv3;
+                const double bx = kb * (b3 * rx - sx), by = kb * (b3 * ry - sy), bz = kb * (b3 * rz - sz);
+                const double f = 3.0 * kMu * inv3 * inv2, g = 5.0 * msr * mtr * inv2;
+                fx[k] += far ? f * ((mtr * sx + msr * tmx) + mm * rx - g * rx) : 0.0;
+                fy[k] += far ? f * ((mtr * sy + msr * tmy) + mm * ry - g * ry) : 0.0;
+                fz[k] += far ? f * ((mtr * sz + msr * tmz) + mm * rz - g * rz) : 0.0;
+                tx[k] += far ? tmy * bz - tmz * by : 0.0;
+                ty[k] += far ? tmz * bx - tmx * bz : 0.0;
+                tz[k] += far ? tmx * by - tmy * bx : 0.0;
+                e[k] -= far ? tmx * bx + tmy * by + tmz * bz : 0.0;
+                c[k] += far ? 1.0 : 0.0;
+            }
+        }
+        double pairs = 0;
+        for (std::size_t k = 0; k < m; ++k) {
+            Wrench& w = out[i0 + k];
+            w.force += Vec3(fx[k], fy[k], fz[k]);
+            w.torque += Vec3(tx[k], ty[k], tz[k]);
+            w.energy += e[k];
+            pairs += c[k];
+        }
+        count[block] = pairs;
+    });
+    double total = 0;
+    for (double v : count) total += v;
+    return static_cast<std::uint64_t>(total / 2 + 0.5);  // each pair seen from both ends
+}
+
+} // namespace mag
