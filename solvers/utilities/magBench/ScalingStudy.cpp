@@ -1,13 +1,16 @@
-// scaling: cost of the wrenches of one step against the number of magnets, for
-// the hybrid (near MBM, far EDM, dipole pairs beyond dipoleRatio (R1 + R2)).
+// scaling: cost of the wrenches of one step against the number of magnets, for the
+// hybrid (near MBM, far EDM, dipole pairs found by a grid and summed in bulk), in one
+// or more settings side by side.
 // N 1 cm cubes, 1 T, random orientations, placed at random (fixed seed) in a cube
 // whose edge grows as N^(1/3), so the number density stays constant (one magnet per
 // spacing^3) and most pairs of a large scene are far; no two bounding spheres overlap.
 //
 //   scaling:
-//     bodies: [2, 5, 10, 20, 50, 100, 200, 500, 1000]
+//     bodies: [2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000]
 //     spacing: 0.03                    # m, box edge = spacing N^(1/3)
-//     field: "{type: hybrid, near: {type: MBM, quadrature: {type: gauss, n: 6}}}"
+//     fields:                          # label: field (YAML); the CSV's `field` column
+//       ratio8: "{type: hybrid, near: {type: MBM, quadrature: {type: gauss, n: 6}}}"
+//       tolerance1e-3: "{type: hybrid, near: {...}, dipoleTolerance: 1e-3}"
 //     threads: [1, 0]                  # 0 = all cores
 //     minSeconds: 0.05                 # timing per run (at least one call); the best
 //     repeats: 2                       #   of `repeats` runs
@@ -64,10 +67,18 @@ PairCounts pairCounts(const FieldEvaluator& f) {
 } // namespace
 
 void scalingStudy(const Dict& study, const std::filesystem::path& caseDir) {
-    const auto ns = study.get<std::vector<double>>("bodies", {2, 5, 10, 20, 50, 100, 200, 500, 1000});
+    const auto ns = study.get<std::vector<double>>("bodies", {2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000});
     const double spacing = study.get<double>("spacing", 0.03);
-    const std::string field =
-        study.get<std::string>("field", "{type: hybrid, near: {type: MBM, quadrature: {type: gauss, n: 6}}}");
+    std::vector<std::pair<std::string, std::string>> fields;
+    if (study.has("fields")) {
+        const Dict f = study.sub("fields");
+        for (const auto& label : f.keys()) fields.emplace_back(label, f.get<std::string>(label));
+        if (fields.empty()) study.fail("fields", "give at least one `label: field` entry");
+    } else {
+        fields = {{"ratio8", "{type: hybrid, near: {type: MBM, quadrature: {type: gauss, n: 6}}}"},
+                  {"tolerance1e-3",
+                   "{type: hybrid, near: {type: MBM, quadrature: {type: gauss, n: 6}}, dipoleTolerance: 1e-3}"}};
+    }
     const auto counts = threadCounts(study);
     const double minSeconds = study.get<double>("minSeconds", 0.05);
     const int repeats = study.get<int>("repeats", 2);
@@ -77,22 +88,26 @@ void scalingStudy(const Dict& study, const std::filesystem::path& caseDir) {
     study.reportUnused();
 
     const RestoreThreads restore;
-    auto csv = openCsv(caseDir, "scaling.csv", "bodies,threads,msPerStep,nearPairs,farPairs,dipolePairs");
-    for (double nd : ns) {
-        const int n = static_cast<int>(nd);
-        const std::vector<Body> bodies = scatteredCubes(n, spacing, static_cast<unsigned>(seed));
-        // Counts from a fresh evaluator's first call; that call also builds the tables.
-        const MagneticSystem system(evaluator(field), InductionModel::New(Dict::fromString("type: none\n", "scaling")));
-        (void)system.wrenches(bodies, true);
-        const PairCounts pc = pairCounts(system.fieldEvaluator());
-        for (int t : counts) {
-            setThreads(t);
-            const double ms =
-                1e3 * bestSecondsPerCall([&] { (void)system.wrenches(bodies, true); }, minSeconds, repeats);
-            csv << n << ',' << t << ',' << ms << ',' << pc.nearPairs << ',' << pc.farPairs << ',' << pc.dipolePairs
-                << '\n';
-            spdlog::info("  N={:<5} threads {}  {:10.4f} ms per step  pairs near {} far {} dipole {}", n, t, ms,
-                         pc.nearPairs, pc.farPairs, pc.dipolePairs);
+    auto csv = openCsv(caseDir, "scaling.csv", "field,bodies,threads,msPerStep,nearPairs,farPairs,dipolePairs");
+    for (const auto& [label, field] : fields) {
+        spdlog::info("  {}: {}", label, field);
+        for (double nd : ns) {
+            const int n = static_cast<int>(nd);
+            const std::vector<Body> bodies = scatteredCubes(n, spacing, static_cast<unsigned>(seed));
+            // Counts from a fresh evaluator's first call; that call also builds the tables.
+            const MagneticSystem system(evaluator(field),
+                                        InductionModel::New(Dict::fromString("type: none\n", "scaling")));
+            (void)system.wrenches(bodies, true);
+            const PairCounts pc = pairCounts(system.fieldEvaluator());
+            for (int t : counts) {
+                setThreads(t);
+                const double ms =
+                    1e3 * bestSecondsPerCall([&] { (void)system.wrenches(bodies, true); }, minSeconds, repeats);
+                csv << label << ',' << n << ',' << t << ',' << ms << ',' << pc.nearPairs << ',' << pc.farPairs << ','
+                    << pc.dipolePairs << '\n';
+                spdlog::info("  {:<14} N={:<5} threads {}  {:10.4f} ms per step  pairs near {} far {} dipole {}", label,
+                             n, t, ms, pc.nearPairs, pc.farPairs, pc.dipolePairs);
+            }
         }
     }
 }
