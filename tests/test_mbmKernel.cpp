@@ -4,6 +4,9 @@
 // many meshes and point sets: random, grids through the body, points exactly on faces,
 // edges and vertices, within rounding of them, far away, and point counts that are not
 // a multiple of the SIMD width. Also the SIMD log and atan2 against the C library.
+// Each check runs once per compiled copy of the blocked kernel (KernelPath.hpp: avx2
+// and avx512 in the default x86-64 build), skipping with a warning the copies this CPU
+// cannot run; the copies must give the same bits.
 //
 // Tolerance: 1e-12 relative to the field's scale (mu0 |M| for B, |M| R for phi, R for
 // S, 1 for insideFraction; R the bounding radius). The three forms evaluate the same
@@ -15,11 +18,13 @@
 // a formula or a lost lane shows as 1e-6 or more.
 #include <catch2/catch.hpp>
 
+#include "KernelPath.hpp"
 #include "MBMReference.hpp"
+#include "PolyhedronBlocks.hpp"
 #include "PolyhedronField.hpp"
 #include "PolyhedronTables.hpp"
-#include "SimdMath.hpp"
 
+#include <magFoam/Error.hpp>
 #include <magFoam/MeshPrimitives.hpp>
 #include <magFoam/MeshShapes.hpp>
 
@@ -27,14 +32,12 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
 
 using namespace mag::mbm;
-
-// SIMD values go by value to inlined helpers only (no ABI boundary) on plain x86-64.
-#pragma GCC diagnostic ignored "-Wpsabi"
 
 namespace {
 
@@ -42,6 +45,33 @@ constexpr double kTolerance = 1e-12;
 const Vec3 kM = Vec3(0.3, -0.5, 0.8).normalized() * (1.2 / mu0); // ~1.2 T, oblique
 
 PolyhedronTables tablesOf(const mag::SurfaceMesh& m) { return PolyhedronTables(m.vertices, m.triangles); }
+
+// body(path) once per copy of the blocked kernel this CPU runs, evaluate() switched to
+// it; the copies it cannot run are skipped with a warning. The copy in use before is
+// restored afterwards.
+template <class Body>
+void forEachKernelPath(Body&& body) {
+    struct Restore {
+        std::string path = kernelPath();
+        ~Restore() { setKernelPath(path); }
+    } restore;
+    for (const std::string& path : kernelPaths()) {
+        if (!kernelPathSupported(path)) {
+            WARN("kernel path " << path << " skipped: this CPU cannot run it");
+            continue;
+        }
+        setKernelPath(path);
+        INFO("kernel path " << path);
+        body(path);
+    }
+}
+
+// The avx2 and avx512 copies evaluate the same operations per lane, both with FMA
+// (SimdMath.hpp): the same bits.
+bool sameBitsExpected(const std::string& a, const std::string& b) {
+    auto fused = [](const std::string& p) { return p == "avx2" || p == "avx512"; };
+    return fused(a) && fused(b);
+}
 
 struct Fields {
     std::vector<Vec3> B, A, S;
@@ -78,46 +108,57 @@ bool allFinite(const Fields& x) {
     return true;
 }
 
-// Fast (blocked), reference (face by face) and scalar (one point per call) agree.
+// Fast (blocked), reference (face by face) and scalar (one point per call) agree, for
+// every copy of the blocked kernel, and the copies agree bit for bit.
 void checkAgreement(const PolyhedronTables& t, const std::vector<Vec3>& pts, const std::string& what) {
     INFO(what << ", " << pts.size() << " points");
     const double R = t.boundingRadius();
-    Fields fast(pts.size()), ref(pts.size()), scalar(pts.size());
-    evaluate(t, kM, pts, fast.all());
+    Fields ref(pts.size());
     reference::evaluate(t, kM, pts, ref.all());
-    for (std::size_t i = 0; i < pts.size(); ++i) {
-        const PointField p = evaluate(t, kM, pts[i]);
-        scalar.B[i] = p.B;
-        scalar.A[i] = p.A;
-        scalar.S[i] = p.S;
-        scalar.f[i] = p.insideFraction;
-        scalar.phi[i] = p.scalarPotential;
-    }
-    // B only and B with S (the wrench's request) take other instantiations.
-    Fields bOnly(pts.size()), bfS(pts.size());
-    evaluate(t, kM, pts, FieldOutputs{bOnly.B, {}, bOnly.f, {}, {}});
-    evaluate(t, kM, pts, FieldOutputs{bfS.B, {}, bfS.f, {}, bfS.S});
-    bfS.A = fast.A;
-    bfS.phi = fast.phi;
-    CHECK(allFinite(fast));
     CHECK(allFinite(ref));
-    const Diff fr = compare(fast, ref, R), sr = compare(scalar, ref, R), fs = compare(fast, scalar, R);
-    const Diff bo = compare(bOnly, fast, R, false), bs = compare(bfS, fast, R);
-    if (fr.max() > kTolerance) {
-        std::size_t w = 0;
-        double wd = 0;
-        for (std::size_t i = 0; i < pts.size(); ++i)
-            if (std::abs(fast.f[i] - ref.f[i]) + (fast.B[i] - ref.B[i]).norm() / (mu0 * kM.norm()) > wd)
-                wd = std::abs(fast.f[i] - ref.f[i]) + (fast.B[i] - ref.B[i]).norm() / (mu0 * kM.norm()), w = i;
-        std::printf("worst point %zu (%.17g, %.17g, %.17g) f fast %.17g ref %.17g\n", w, pts[w].x(), pts[w].y(), pts[w].z(), fast.f[w], ref.f[w]);
-    }
-    std::printf("%-44s fast-ref %.1e (B %.1e S %.1e f %.1e)  scalar-ref %.1e  fast-scalar %.1e\n",
-                what.c_str(), fr.max(), fr.B, fr.S, fr.f, sr.max(), fs.max());
-    CHECK(fr.max() <= kTolerance);
-    CHECK(sr.max() <= kTolerance);
-    CHECK(fs.max() <= kTolerance);
-    CHECK(bo.max() == 0.0); // same lanes, same operations
-    CHECK(bs.max() == 0.0);
+    std::optional<std::pair<std::string, Fields>> first;
+    forEachKernelPath([&](const std::string& path) {
+        Fields fast(pts.size()), scalar(pts.size());
+        evaluate(t, kM, pts, fast.all());
+        for (std::size_t i = 0; i < pts.size(); ++i) {
+            const PointField p = evaluate(t, kM, pts[i]);
+            scalar.B[i] = p.B;
+            scalar.A[i] = p.A;
+            scalar.S[i] = p.S;
+            scalar.f[i] = p.insideFraction;
+            scalar.phi[i] = p.scalarPotential;
+        }
+        // B only and B with S (the wrench's request) take other instantiations.
+        Fields bOnly(pts.size()), bfS(pts.size());
+        evaluate(t, kM, pts, FieldOutputs{bOnly.B, {}, bOnly.f, {}, {}});
+        evaluate(t, kM, pts, FieldOutputs{bfS.B, {}, bfS.f, {}, bfS.S});
+        bfS.A = fast.A;
+        bfS.phi = fast.phi;
+        CHECK(allFinite(fast));
+        const Diff fr = compare(fast, ref, R), sr = compare(scalar, ref, R), fs = compare(fast, scalar, R);
+        const Diff bo = compare(bOnly, fast, R, false), bs = compare(bfS, fast, R);
+        if (fr.max() > kTolerance) {
+            std::size_t w = 0;
+            double wd = 0;
+            for (std::size_t i = 0; i < pts.size(); ++i)
+                if (std::abs(fast.f[i] - ref.f[i]) + (fast.B[i] - ref.B[i]).norm() / (mu0 * kM.norm()) > wd)
+                    wd = std::abs(fast.f[i] - ref.f[i]) + (fast.B[i] - ref.B[i]).norm() / (mu0 * kM.norm()), w = i;
+            std::printf("worst point %zu (%.17g, %.17g, %.17g) f fast %.17g ref %.17g\n", w, pts[w].x(), pts[w].y(), pts[w].z(), fast.f[w], ref.f[w]);
+        }
+        std::printf("%-44s %-6s fast-ref %.1e (B %.1e S %.1e f %.1e)  scalar-ref %.1e  fast-scalar %.1e\n",
+                    what.c_str(), path.c_str(), fr.max(), fr.B, fr.S, fr.f, sr.max(), fs.max());
+        CHECK(fr.max() <= kTolerance);
+        CHECK(sr.max() <= kTolerance);
+        CHECK(fs.max() <= kTolerance);
+        CHECK(bo.max() == 0.0); // same lanes, same operations
+        CHECK(bs.max() == 0.0);
+        if (!first) {
+            first.emplace(path, std::move(fast));
+        } else if (sameBitsExpected(first->first, path)) {
+            INFO("against kernel path " << first->first);
+            CHECK(compare(fast, first->second, R).max() == 0.0);
+        }
+    });
 }
 
 struct Sets {
@@ -200,7 +241,6 @@ void checkMesh(const mag::SurfaceMesh& m, const std::string& name, unsigned seed
 } // namespace
 
 TEST_CASE("kernel: SIMD log, log1p and atan2 within 2 ulp of the C library", "[mbm][kernel]") {
-    namespace s = mag::mbm::simd;
     std::mt19937_64 rng(7);
     std::uniform_real_distribution<double> e(-40.0, 40.0), u(-1.0, 1.0);
     auto ulps = [](double a, double ref) {
@@ -208,35 +248,59 @@ TEST_CASE("kernel: SIMD log, log1p and atan2 within 2 ulp of the C library", "[m
         const double ulp = std::nextafter(std::abs(ref), INFINITY) - std::abs(ref);
         return std::abs(a - ref) / ulp;
     };
-    double worstLog = 0, worstLog1p = 0, worstAtan2 = 0;
-    for (int it = 0; it < 100000; ++it) {
-        s::vd x, q, y, z;
-        for (int l = 0; l < s::kWidth; ++l) {
-            x[l] = std::exp(e(rng) * (it % 2 ? 1.0 : 1e-3)); // also near 1
-            q[l] = std::exp(e(rng));
-            y[l] = u(rng) * std::exp(0.3 * e(rng));
-            z[l] = u(rng) * std::exp(0.3 * e(rng));
-        }
-        const s::vd lx = s::log(x), lq = s::log1p(q), at = s::atan2(y, z);
-        for (int l = 0; l < s::kWidth; ++l) {
-            worstLog = std::max(worstLog, ulps(lx[l], std::log(x[l])));
-            worstLog1p = std::max(worstLog1p, ulps(lq[l], std::log1p(q[l])));
-            worstAtan2 = std::max(worstAtan2, ulps(at[l], std::atan2(y[l], z[l])));
-        }
+    const std::size_t n = 400000;
+    std::vector<double> x(n), q(n), y(n), z(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        x[i] = std::exp(e(rng) * ((i / 4) % 2 ? 1.0 : 1e-3)); // also near 1
+        q[i] = std::exp(e(rng));
+        y[i] = u(rng) * std::exp(0.3 * e(rng));
+        z[i] = u(rng) * std::exp(0.3 * e(rng));
     }
-    CHECK(worstLog <= 2.0);
-    CHECK(worstLog1p <= 2.0);
-    CHECK(worstAtan2 <= 2.0);
-    // signed zeros as in C (the kernel's principal values rely on them)
-    const s::vd y{0.0, -0.0, 0.0, -0.0}, x{0.0, 0.0, -0.0, -1.0};
-    const s::vd a = s::atan2(y, x);
-    for (int l = 0; l < s::kWidth; ++l) {
-        CHECK(a[l] == std::atan2(y[l], x[l]));
-        CHECK(std::signbit(a[l]) == std::signbit(std::atan2(y[l], x[l])));
-    }
-    const s::vd tiny{1e-300, 1e-20, 1e-10, 1e300};
-    const s::vd lt = s::log1p(tiny);
-    for (int l = 0; l < s::kWidth; ++l) CHECK(ulps(lt[l], std::log1p(tiny[l])) <= 1.0);
+    // each copy's own vector functions (PolyhedronBlocks.hpp)
+    forEachKernelPath([&](const std::string&) {
+        const blocks::BlockKernel& k = blocks::current();
+        std::vector<double> lx(n), lq(n), at(n);
+        k.elementary(x.data(), q.data(), y.data(), z.data(), n, lx.data(), lq.data(), at.data());
+        double worstLog = 0, worstLog1p = 0, worstAtan2 = 0;
+        for (std::size_t i = 0; i < n; ++i) {
+            worstLog = std::max(worstLog, ulps(lx[i], std::log(x[i])));
+            worstLog1p = std::max(worstLog1p, ulps(lq[i], std::log1p(q[i])));
+            worstAtan2 = std::max(worstAtan2, ulps(at[i], std::atan2(y[i], z[i])));
+        }
+        CHECK(worstLog <= 2.0);
+        CHECK(worstLog1p <= 2.0);
+        CHECK(worstAtan2 <= 2.0);
+        // signed zeros as in C (the kernel's principal values rely on them)
+        const double y0[] = {0.0, -0.0, 0.0, -0.0}, x0[] = {0.0, 0.0, -0.0, -1.0};
+        const double tiny[] = {1e-300, 1e-20, 1e-10, 1e300}, ones[] = {1.0, 1.0, 1.0, 1.0};
+        double l0[4], lt[4], a[4];
+        k.elementary(ones, tiny, y0, x0, 4, l0, lt, a);
+        for (int l = 0; l < 4; ++l) {
+            CHECK(a[l] == std::atan2(y0[l], x0[l]));
+            CHECK(std::signbit(a[l]) == std::signbit(std::atan2(y0[l], x0[l])));
+            CHECK(ulps(lt[l], std::log1p(tiny[l])) <= 1.0);
+        }
+    });
+}
+
+TEST_CASE("kernel: the copies of the blocked kernel and their selection", "[mbm][kernel]") {
+    const std::vector<std::string> paths = kernelPaths();
+    REQUIRE(!paths.empty());
+    CHECK(kernelPathSupported(paths.front())); // the build's own flags
+    CHECK_FALSE(kernelPathSupported("sse9"));
+    const std::string before = kernelPath();
+    // auto: the widest copy this CPU runs
+    setKernelPath("auto");
+    std::string widest;
+    for (const std::string& p : paths)
+        if (kernelPathSupported(p)) widest = p;
+    CHECK(kernelPath() == widest);
+    CHECK((kernelWidth() == 4 || kernelWidth() == 8));
+    CHECK_THROWS_AS(setKernelPath("sse9"), mag::InputError);
+    CHECK(kernelPath() == widest); // unchanged by a failed request
+    for (const std::string& p : paths)
+        if (!kernelPathSupported(p)) CHECK_THROWS_AS(setKernelPath(p), mag::InputError);
+    setKernelPath(before);
 }
 
 TEST_CASE("kernel: fast, reference and scalar agree on a 12-triangle cube", "[mbm][kernel]") {
@@ -269,7 +333,7 @@ TEST_CASE("kernel: any point count, any subset of outputs", "[mbm][kernel]") {
     const PolyhedronTables t = tablesOf(mag::makeIcosphere(0.01, 1));
     std::mt19937 rng(11);
     std::uniform_real_distribution<double> uni(-0.02, 0.02);
-    for (std::size_t n : {0, 1, 2, 3, 4, 5, 7, 8, 9, 13, 63, 64, 65}) {
+    for (std::size_t n : {0, 1, 2, 3, 4, 5, 7, 8, 9, 13, 15, 16, 17, 63, 64, 65, 129}) {
         std::vector<Vec3> pts(n);
         for (Vec3& p : pts) p = Vec3(uni(rng), uni(rng), uni(rng));
         checkAgreement(t, pts, "count " + std::to_string(n));
@@ -277,20 +341,69 @@ TEST_CASE("kernel: any point count, any subset of outputs", "[mbm][kernel]") {
     // outputs requested one at a time equal the same outputs requested together
     std::vector<Vec3> pts(37);
     for (Vec3& p : pts) p = Vec3(uni(rng), uni(rng), uni(rng));
-    Fields all(pts.size()), one(pts.size());
-    evaluate(t, kM, pts, all.all());
-    evaluate(t, kM, pts, FieldOutputs{{}, one.A, {}, {}, {}});
-    evaluate(t, kM, pts, FieldOutputs{{}, {}, {}, one.phi, {}});
-    evaluate(t, kM, pts, FieldOutputs{{}, {}, one.f, {}, {}});
-    for (std::size_t i = 0; i < pts.size(); ++i) {
-        CHECK(one.A[i] == all.A[i]);
-        CHECK(one.phi[i] == all.phi[i]);
-        CHECK(one.f[i] == all.f[i]);
-    }
+    forEachKernelPath([&](const std::string&) {
+        Fields all(pts.size()), one(pts.size());
+        evaluate(t, kM, pts, all.all());
+        evaluate(t, kM, pts, FieldOutputs{{}, one.A, {}, {}, {}});
+        evaluate(t, kM, pts, FieldOutputs{{}, {}, {}, one.phi, {}});
+        evaluate(t, kM, pts, FieldOutputs{{}, {}, one.f, {}, {}});
+        for (std::size_t i = 0; i < pts.size(); ++i) {
+            CHECK(one.A[i] == all.A[i]);
+            CHECK(one.phi[i] == all.phi[i]);
+            CHECK(one.f[i] == all.f[i]);
+        }
+    });
     // the reference checks its output sizes like evaluate()
     std::vector<Vec3> shortB(3);
     CHECK_THROWS_AS(reference::evaluate(t, kM, pts, FieldOutputs{shortB, {}, {}, {}, {}}),
                     std::invalid_argument);
+}
+
+TEST_CASE("kernel: per-call tables reused only for the same tables, M and kernel path",
+          "[mbm][kernel]") {
+    // evaluate() keeps the per-call tables of its last call on this thread; each call
+    // below changes one of what they depend on and must give the field of its own inputs
+    const Vec3 M2 = Vec3(-0.6, 0.2, 0.1).normalized() * (0.9 / mu0);
+    std::vector<Vec3> pts(29);
+    std::mt19937 rng(12);
+    std::uniform_real_distribution<double> uni(-0.02, 0.02);
+    for (Vec3& p : pts) p = Vec3(uni(rng), uni(rng), uni(rng));
+    auto check = [&](const PolyhedronTables& t, const Vec3& M) {
+        std::vector<Vec3> B(pts.size()), Bref(pts.size());
+        evaluate(t, M, pts, B);
+        reference::evaluate(t, M, pts, FieldOutputs{Bref, {}, {}, {}, {}});
+        double d = 0;
+        for (std::size_t i = 0; i < pts.size(); ++i) d = std::max(d, (B[i] - Bref[i]).norm() / (mu0 * M.norm()));
+        CHECK(d <= kTolerance);
+    };
+    const PolyhedronTables box = tablesOf(mag::makeBox(Vec3(0.01, 0.02, 0.01)));
+    const PolyhedronTables sphere = tablesOf(mag::makeIcosphere(0.01, 1));
+    forEachKernelPath([&](const std::string&) {
+        check(box, kM);
+        check(box, kM); // reused
+        check(box, M2);
+        check(sphere, M2);
+        check(box, M2);
+        const PolyhedronTables copy = box; // same contents, other storage
+        check(copy, M2);
+        // a new mesh built where the last one was (same address, maybe same buffers)
+        std::optional<PolyhedronTables> slot(std::in_place, tablesOf(mag::makeBox(Vec3(0.01, 0.01, 0.01))));
+        check(*slot, kM);
+        slot.reset();
+        slot.emplace(tablesOf(mag::makeBox(Vec3(0.03, 0.01, 0.005))));
+        check(*slot, kM);
+    });
+    // and across a change of path (each copy keeps its own tables)
+    const std::vector<std::string> paths = kernelPaths();
+    const std::string before = kernelPath();
+    for (const std::string& p : paths) {
+        if (!kernelPathSupported(p)) continue;
+        check(sphere, kM);
+        setKernelPath(p);
+        check(box, kM);
+        check(sphere, kM);
+    }
+    setKernelPath(before);
 }
 
 TEST_CASE("kernel: non-finite points give non-finite fields in their lane only", "[mbm][kernel]") {
@@ -298,11 +411,13 @@ TEST_CASE("kernel: non-finite points give non-finite fields in their lane only",
     const double nan = std::numeric_limits<double>::quiet_NaN();
     std::vector<Vec3> pts = {Vec3(0.02, 0.0, 0.0), Vec3(nan, 0.0, 0.0), Vec3(0.0, 0.001, 0.0),
                              Vec3(0.0, 0.0, 0.03)};
-    std::vector<Vec3> B(pts.size());
-    evaluate(t, kM, pts, B);
-    CHECK(B[0].allFinite());
-    CHECK_FALSE(B[1].allFinite());
-    CHECK(B[2].allFinite());
-    CHECK(B[3].allFinite());
-    CHECK((B[0] - evaluate(t, kM, pts[0]).B).norm() <= kTolerance * mu0 * kM.norm());
+    forEachKernelPath([&](const std::string&) {
+        std::vector<Vec3> B(pts.size());
+        evaluate(t, kM, pts, B);
+        CHECK(B[0].allFinite());
+        CHECK_FALSE(B[1].allFinite());
+        CHECK(B[2].allFinite());
+        CHECK(B[3].allFinite());
+        CHECK((B[0] - evaluate(t, kM, pts[0]).B).norm() <= kTolerance * mu0 * kM.norm());
+    });
 }

@@ -1,25 +1,19 @@
 // Closed-form field of a uniformly magnetized polyhedron (see the header).
 #include "PolyhedronField.hpp"
-#include "SimdMath.hpp"
+#include "PolyhedronBlocks.hpp"
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 #include <vector>
 
-// SIMD values go by value only between functions of this file, all inlined (no ABI
-// boundary): the note about the AVX calling convention on plain x86-64 does not apply.
-#pragma GCC diagnostic ignored "-Wpsabi"
-
 namespace mag::mbm {
 
 namespace {
-
-using simd::vd;
-using simd::vm;
-constexpr int kW = simd::kWidth;
 
 constexpr double kFourPi = 4.0 * std::numbers::pi;
 constexpr double kEps = std::numeric_limits<double>::epsilon();
@@ -37,23 +31,6 @@ struct EdgeWork {
     Eigen::Matrix3d K;
 };
 
-// The same edge for the blocked path, constants already broadcast to every lane (AVX2
-// has no broadcast operand): W_p of face0/face1 gets -omega_e (i . a) (Eq. 12), and
-// the thresholds of edgeLogTerm's special forms.
-struct BlockEdge {
-    int v0, v1, face0, face1;
-    vd length, twoLength, dx, dy, dz; // L, 2 L, r_v1 - r_v0
-    vd cx, cy, cz;                    // EdgeWork::c
-    vd i0x, i0y, i0z, i1x, i1y, i1z;
-    vd cross2Min; // |a x delta|^2 below this: within delta L of the line
-    vd smlMin;    // S - L at or below this (a . b >= 0): within ~1e-4 L of a vertex
-};
-
-// A face for the blocked path, broadcast likewise.
-struct BlockFace {
-    vd nx, ny, nz, dx, dy, dz; // FaceWork::n, FaceWork::d
-};
-
 // Per-face data for one call. B gets Omega_p (M - n_p (n_p . M)) = Omega_p d from face p.
 struct FaceWork {
     Vec3 n;
@@ -66,16 +43,32 @@ struct FaceWork {
 // Scratch reused by every call on this thread: no allocation once warm.
 struct Scratch {
     std::vector<EdgeWork> edges;
-    std::vector<BlockEdge> blockEdges;
     std::vector<FaceWork> faces;
     std::vector<Vec3> rel;    // r_v - r
     std::vector<double> dist; // |r_v - r|
     std::vector<double> invDist; // 1 / |r_v - r| (0 at the vertex itself)
-    // the same for a block of kW points, one lane per point (structure of arrays)
-    std::vector<vd> relX, relY, relZ, distV;
-    std::vector<vd> W; // W_p per face (Eq. 12)
-    std::vector<BlockFace> blockFaces;
-    std::vector<vd> twiceArea; // per triangle
+    // the same tables for the blocked kernel (PolyhedronBlocks.hpp: plain data)
+    std::vector<blocks::Edge> blockEdges;
+    std::vector<blocks::Face> blockFaces;
+    std::vector<blocks::Triangle> blockTriangles;
+    double vertexScale = 0.0; // max_v |r_v|
+    // What the tables above (and the kernel's own, prepared on this thread) were built
+    // for: a call that repeats it reuses them (the wrench evaluates a target's samples
+    // in blocks of 32, each with the same source and M). The id tells tables apart
+    // even where a new one is built at a freed one's address; the vertex buffer, a
+    // moved-from object from its moved-to twin.
+    struct Key {
+        std::uint64_t tablesId = 0;
+        const Vec3* vertices = nullptr;
+        Vec3 M = Vec3::Zero();
+        const blocks::BlockKernel* kernel = nullptr;
+        bool operator==(const Key& o) const { // M bit for bit (signed zeros, NaN)
+            auto bits = [](double x) { return std::bit_cast<std::uint64_t>(x); };
+            return tablesId == o.tablesId && vertices == o.vertices && kernel == o.kernel &&
+                   bits(M.x()) == bits(o.M.x()) && bits(M.y()) == bits(o.M.y()) &&
+                   bits(M.z()) == bits(o.M.z());
+        }
+    } prepared;
 };
 
 Scratch& scratch() {
@@ -190,161 +183,92 @@ void evaluatePoint(Scratch& s, const Call& c, std::size_t i, const Vec3& r) {
 }
 
 
-// Sums of one block, one lane per point.
-struct BlockSums {
-    vd Bx, By, Bz, Sx, Sy, Sz, omegaTotal;
-};
-
-// The same terms as evaluatePoint for kW points at once, edge-major, in the same
-// operation order where a threshold depends on the result (h, R, a . b, |a x delta|),
-// so every lane takes the branch the scalar form would. The lanes where edgeLogTerm
-// needs a special form (within delta L of an edge line, within ~1e-4 L of a vertex) or
-// where a coordinate is not finite are returned as set bits: the caller recomputes
-// them with evaluatePoint. Everything else (Omega_p = 0 on a face plane, the sign fix
-// near +-2 pi) is done per lane here.
-template <bool wantS>
-unsigned evaluateBlock(Scratch& s, const Call& c, const Vec3* p, BlockSums& sum) {
-    vd px, py, pz;
-    for (int l = 0; l < kW; ++l) {
-        px[l] = p[l].x();
-        py[l] = p[l].y();
-        pz[l] = p[l].z();
-    }
-    const vd r2 = (px * px + py * py) + pz * pz;
-    vm special = ~(r2 <= std::numeric_limits<double>::max()); // NaN or infinite
-    const vd planeTolerance = (16.0 * kEps) * (simd::sqrt(r2) + c.vertexScale);
-    const std::size_t nV = c.verts.size();
-    for (std::size_t v = 0; v < nV; ++v) {
-        const vd x = c.verts[v].x() - px, y = c.verts[v].y() - py, z = c.verts[v].z() - pz;
-        const vd d = simd::sqrt((x * x + y * y) + z * z);
-        s.relX[v] = x;
-        s.relY[v] = y;
-        s.relZ[v] = z;
-        s.distV[v] = d;
-    }
-    vd Bx{}, By{}, Bz{};
-    if constexpr (wantS) std::fill(s.W.begin(), s.W.end(), vd{});
-    // Edge terms (Eq. 14), one log per lane: beside the segment (a . b < 0) the stable
-    // ratio ln[(S + L)^2 (R1 R2 - a . b) / (2 |a x delta|^2)], elsewhere log1p(2L / (S - L)).
-    for (const BlockEdge& e : s.blockEdges) {
-        const auto v0 = static_cast<std::size_t>(e.v0), v1 = static_cast<std::size_t>(e.v1);
-        const vd ax = s.relX[v0], ay = s.relY[v0], az = s.relZ[v0], R1 = s.distV[v0];
-        const vd bx = s.relX[v1], by = s.relY[v1], bz = s.relZ[v1], R2 = s.distV[v1];
-        const vd ab = (ax * bx + ay * by) + az * bz;
-        const vd S = R1 + R2;
-        const vd qx = ay * e.dz - az * e.dy, qy = az * e.dx - ax * e.dz, qz = ax * e.dy - ay * e.dx;
-        const vd cross2 = (qx * qx + qy * qy) + qz * qz;
-        const vd SmL = S - e.length, SpL = S + e.length;
-        const vm beside = ab < 0.0;
-        special |= beside ? (cross2 < e.cross2Min) : (SmL <= e.smlMin);
-        const vd num = simd::select(beside, SpL * SpL * (R1 * R2 - ab), e.twoLength);
-        const vd den = simd::select(beside, 2.0 * cross2, SmL);
-        const vd q = num / den;
-        const vd u = simd::select(beside, q, 1.0 + q);
-        const vd bb = u - 1.0; // u = fl(1 + q) loses (1 - (u - bb)) + (q - bb) (TwoSum)
-        const vd lo = simd::select(beside, vd{}, (1.0 - (u - bb)) + (q - bb));
-        const vd omega = simd::logPlus(u, lo);
-        Bx = simd::fma(omega, e.cx, Bx);
-        By = simd::fma(omega, e.cy, By);
-        Bz = simd::fma(omega, e.cz, Bz);
-        if constexpr (wantS) {
-            // (n_p x (r_e - r)) . u_e = -(n_p x u_e) . a, a = r_v0 - r (Eq. 12)
-            const vd i0a = simd::fma(e.i0z, az, simd::fma(e.i0y, ay, e.i0x * ax));
-            const vd i1a = simd::fma(e.i1z, az, simd::fma(e.i1y, ay, e.i1x * ax));
-            vd& W0 = s.W[static_cast<std::size_t>(e.face0)];
-            vd& W1 = s.W[static_cast<std::size_t>(e.face1)];
-            W0 = simd::fma(-omega, i0a, W0);
-            W1 = simd::fma(-omega, i1a, W1);
-        }
-    }
-    // Face terms (Eq. 15): one atan2 per face and lane, as in evaluatePoint.
-    vd Sx{}, Sy{}, Sz{}, omegaTotal{};
-    for (std::size_t fi = 0; fi < s.faces.size(); ++fi) {
-        const FaceWork& f = s.faces[fi];
-        const BlockFace& bf = s.blockFaces[fi];
-        const auto fv = static_cast<std::size_t>(f.vertex);
-        const vd h = (bf.nx * s.relX[fv] + bf.ny * s.relY[fv]) + bf.nz * s.relZ[fv];
-        // Omega_p = 2 arg prod_t (D_t + i N_t) as in evaluatePoint, but the running
-        // product renormalized by a power of two (exact) instead of each factor divided
-        // by R_a R_b R_c: the argument is the same, without a reciprocal per vertex.
-        vd re{}, im{};
-        for (int t = f.triBegin; t < f.triEnd; ++t) {
-            const PolyTriangle& tri = c.tris[static_cast<std::size_t>(t)];
-            const auto i0 = static_cast<std::size_t>(tri.v[0]);
-            const auto i1 = static_cast<std::size_t>(tri.v[1]);
-            const auto i2 = static_cast<std::size_t>(tri.v[2]);
-            const vd ax = s.relX[i0], ay = s.relY[i0], az = s.relZ[i0];
-            const vd bx = s.relX[i1], by = s.relY[i1], bz = s.relZ[i1];
-            const vd cx = s.relX[i2], cy = s.relY[i2], cz = s.relZ[i2];
-            const vd Ra = s.distV[i0], Rb = s.distV[i1], Rc = s.distV[i2];
-            const vd N = s.twiceArea[static_cast<std::size_t>(t)] * h;
-            const vd bc = (bx * cx + by * cy) + bz * cz;
-            const vd ca = (cx * ax + cy * ay) + cz * az;
-            const vd abd = (ax * bx + ay * by) + az * bz;
-            const vd D = Ra * Rb * Rc + Ra * bc + Rb * ca + Rc * abd;
-            if (t == f.triBegin) {
-                re = D;
-                im = N;
-                continue;
-            }
-            const vd re2 = re * D - im * N;
-            im = re * N + im * D;
-            re = re2;
-            const vd scale = simd::pow2Inverse(simd::abs(re) + simd::abs(im));
-            re *= scale;
-            im *= scale;
-        }
-        im = simd::select(im * h <= 0.0, simd::copysign(vd{}, h), im); // as evaluatePoint
-        const vd omegaP =
-            simd::select(simd::abs(h) > planeTolerance, 2.0 * simd::atan2(im, re), vd{});
-        omegaTotal += omegaP;
-        Bx = simd::fma(omegaP, bf.dx, Bx);
-        By = simd::fma(omegaP, bf.dy, By);
-        Bz = simd::fma(omegaP, bf.dz, Bz);
-        if constexpr (wantS) {
-            const vd Wp = simd::fma(-omegaP, h, s.W[fi]); // Eq. 12
-            Sx = simd::fma(Wp, bf.nx, Sx);
-            Sy = simd::fma(Wp, bf.ny, Sy);
-            Sz = simd::fma(Wp, bf.nz, Sz);
-        }
-    }
-    sum = {Bx, By, Bz, Sx, Sy, Sz, omegaTotal};
-    return simd::bits(special);
-}
-
-// Every point goes through the blocked path, a last partial block padded with copies
-// of its last point: a point's result then does not depend on how many points share
-// the call (the scalar and vector forms differ in the last bits), so a caller that
-// splits its points (hybrid near/far, sample blocks per thread) gets the same bits.
-template <bool wantS>
-void evaluateBlocks(Scratch& s, const Call& c, std::span<const Vec3> points) {
+// Every point goes through the blocked kernel (PolyhedronBlocks.hpp, the copy chosen
+// at run time: KernelPath.hpp), a last partial block padded with copies of its last
+// point: a point's result then does not depend on how many points share the call (the
+// scalar and vector forms differ in the last bits), so a caller that splits its points
+// (hybrid near/far, sample blocks per thread) gets the same bits. The kernel returns
+// the sums per point; the lanes it flags are recomputed by evaluatePoint, the others
+// scaled here, in chunks that stay in L1.
+void evaluateBlocks(Scratch& s, const Call& c, const blocks::BlockKernel& kernel,
+                    std::span<const Vec3> points) {
+    static_assert(sizeof(Vec3) == 3 * sizeof(double), "points are passed as x, y, z triples");
+    constexpr std::size_t kChunk = 64; // a multiple of every copy's block width
     const double k = mu0 / kFourPi;
     const FieldOutputs& out = c.out;
     const std::size_t n = points.size();
-    BlockSums sum;
-    std::array<Vec3, kW> pad;
-    for (std::size_t i0 = 0; i0 < n; i0 += kW) {
-        const std::size_t m = std::min<std::size_t>(kW, n - i0);
-        const Vec3* p = points.data() + i0;
-        if (m < kW) {
-            for (std::size_t l = 0; l < kW; ++l) pad[l] = points[i0 + std::min(l, m - 1)];
-            p = pad.data();
-        }
-        const unsigned special = evaluateBlock<wantS>(s, c, p, sum);
+    std::array<blocks::PointSums, kChunk> sums;
+    for (std::size_t i0 = 0; i0 < n; i0 += kChunk) {
+        const std::size_t m = std::min(kChunk, n - i0);
+        kernel.sums(points[i0].data(), m, c.wantS, sums.data());
         for (std::size_t l = 0; l < m; ++l) {
             const std::size_t i = i0 + l;
-            if (special & (1u << l)) {
+            const blocks::PointSums& p = sums[l];
+            if (p.special) {
                 evaluatePoint(s, c, i, points[i]);
                 continue;
             }
-            const Vec3 S(sum.Sx[l], sum.Sy[l], sum.Sz[l]);
-            if (!out.B.empty()) out.B[i] = k * Vec3(sum.Bx[l], sum.By[l], sum.Bz[l]);
+            const Vec3 S(p.S[0], p.S[1], p.S[2]);
+            if (!out.B.empty()) out.B[i] = k * Vec3(p.B[0], p.B[1], p.B[2]);
             if (!out.A.empty()) out.A[i] = k * c.M.cross(S);
-            if (!out.insideFraction.empty()) out.insideFraction[i] = sum.omegaTotal[l] / kFourPi;
+            if (!out.insideFraction.empty()) out.insideFraction[i] = p.omegaTotal / kFourPi;
             if (!out.scalarPotential.empty()) out.scalarPotential[i] = c.M.dot(S) / kFourPi;
             if (!out.S.empty()) out.S[i] = S;
         }
     }
+}
+
+// The per-call tables of `tables` and M for evaluatePoint (EdgeWork, FaceWork) and the
+// blocked kernel (kernel.prepare).
+void prepareTables(Scratch& s, const PolyhedronTables& tables, const Vec3& M,
+                   const blocks::BlockKernel& kernel) {
+    const auto& edges = tables.edges();
+    const auto& faces = tables.faces();
+    const auto& tris = tables.triangles();
+    const auto& verts = tables.vertices();
+    s.edges.resize(edges.size());
+    s.blockEdges.resize(edges.size());
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+        const PolyEdge& pe = edges[e];
+        const Vec3& n0 = faces[static_cast<std::size_t>(pe.face0)].normal;
+        const Vec3& n1 = faces[static_cast<std::size_t>(pe.face1)].normal;
+        EdgeWork& w = s.edges[e];
+        w.v0 = pe.v0;
+        w.v1 = pe.v1;
+        w.length = pe.length;
+        w.delta = pe.delta;
+        w.K = n0 * pe.inward0.transpose() + n1 * pe.inward1.transpose();
+        w.c = -(w.K * M);
+        // the thresholds exactly as edgeLogTerm computes them
+        const double rhoMin = kEdgeRegularization * pe.length;
+        s.blockEdges[e] = {pe.v0, pe.v1, pe.face0, pe.face1, pe.length,
+                           pe.delta.x(), pe.delta.y(), pe.delta.z(),
+                           w.c.x(), w.c.y(), w.c.z(),
+                           pe.inward0.x(), pe.inward0.y(), pe.inward0.z(),
+                           pe.inward1.x(), pe.inward1.y(), pe.inward1.z(),
+                           rhoMin * rhoMin * pe.length * pe.length, 1e5 * rhoMin};
+    }
+    s.faces.resize(faces.size());
+    s.blockFaces.resize(faces.size());
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+        const PolyFace& pf = faces[f];
+        s.faces[f] = {pf.normal, tris[static_cast<std::size_t>(pf.triBegin)].v[0],
+                      M - pf.normal * pf.normal.dot(M), pf.triBegin, pf.triEnd};
+        const FaceWork& w = s.faces[f];
+        s.blockFaces[f] = {w.n.x(), w.n.y(), w.n.z(), w.d.x(), w.d.y(), w.d.z(),
+                           w.vertex, w.triBegin, w.triEnd};
+    }
+    s.blockTriangles.resize(tris.size());
+    for (std::size_t t = 0; t < tris.size(); ++t)
+        s.blockTriangles[t] = {tris[t].v[0], tris[t].v[1], tris[t].v[2], tris[t].twiceArea};
+    s.rel.resize(verts.size());
+    s.dist.resize(verts.size());
+    s.invDist.resize(verts.size());
+    s.vertexScale = 0.0;
+    for (const Vec3& v : verts) s.vertexScale = std::max(s.vertexScale, v.norm());
+    kernel.prepare({verts.front().data(), verts.size(), s.blockEdges.data(), s.blockEdges.size(),
+                    s.blockFaces.data(), s.blockFaces.size(), s.blockTriangles.data(),
+                    s.blockTriangles.size(), s.vertexScale});
 }
 
 } // namespace
@@ -461,71 +385,20 @@ void evaluate(const PolyhedronTables& tables, const Vec3& M, std::span<const Vec
     // S = sum_p W_p n_p feeds both A (Eq. 9) and the scalar potential.
     const bool wantS = !out.A.empty() || !out.scalarPotential.empty() || !out.S.empty();
 
-    // Per-call tables: M-dependent coefficients (Eqs. 11-13 regrouped edge-major).
+    if (nP == 0) return;
+
+    // Per-call tables: M-dependent coefficients (Eqs. 11-13 regrouped edge-major), for
+    // the scalar form here and the blocked kernel's copy in use (kept per thread).
     Scratch& s = scratch();
-    const auto& edges = tables.edges();
-    const auto& faces = tables.faces();
-    const auto& tris = tables.triangles();
-    const auto& verts = tables.vertices();
-    s.edges.resize(edges.size());
-    s.blockEdges.resize(edges.size());
-    for (std::size_t e = 0; e < edges.size(); ++e) {
-        const PolyEdge& pe = edges[e];
-        const Vec3& n0 = faces[static_cast<std::size_t>(pe.face0)].normal;
-        const Vec3& n1 = faces[static_cast<std::size_t>(pe.face1)].normal;
-        EdgeWork& w = s.edges[e];
-        w.v0 = pe.v0;
-        w.v1 = pe.v1;
-        w.length = pe.length;
-        w.delta = pe.delta;
-        w.K = n0 * pe.inward0.transpose() + n1 * pe.inward1.transpose();
-        w.c = -(w.K * M);
-        // the thresholds exactly as edgeLogTerm computes them
-        const double rhoMin = kEdgeRegularization * pe.length;
-        using simd::splat;
-        s.blockEdges[e] = {pe.v0, pe.v1, pe.face0, pe.face1,
-                           splat(pe.length), splat(2.0 * pe.length),
-                           splat(pe.delta.x()), splat(pe.delta.y()), splat(pe.delta.z()),
-                           splat(w.c.x()), splat(w.c.y()), splat(w.c.z()),
-                           splat(pe.inward0.x()), splat(pe.inward0.y()), splat(pe.inward0.z()),
-                           splat(pe.inward1.x()), splat(pe.inward1.y()), splat(pe.inward1.z()),
-                           splat(rhoMin * rhoMin * pe.length * pe.length), splat(1e5 * rhoMin)};
+    const blocks::BlockKernel& kernel = blocks::current();
+    const Scratch::Key key{tables.id(), tables.vertices().data(), M, &kernel};
+    if (!(s.prepared == key)) {
+        s.prepared = {};
+        prepareTables(s, tables, M, kernel);
+        s.prepared = key;
     }
-    s.faces.resize(faces.size());
-    for (std::size_t f = 0; f < faces.size(); ++f) {
-        const PolyFace& pf = faces[f];
-        s.faces[f] = {pf.normal, tris[static_cast<std::size_t>(pf.triBegin)].v[0],
-                      M - pf.normal * pf.normal.dot(M), pf.triBegin, pf.triEnd};
-    }
-    s.rel.resize(verts.size());
-    s.dist.resize(verts.size());
-    s.invDist.resize(verts.size());
-
-    double vertexScale = 0.0;
-    for (const Vec3& v : verts) vertexScale = std::max(vertexScale, v.norm());
-    const Call call{verts, tris, M, out, vertexScale, wantS};
-
-    // Blocks of kW points (structure of arrays); the last one padded.
-    if (nP > 0) {
-        s.relX.resize(verts.size());
-        s.relY.resize(verts.size());
-        s.relZ.resize(verts.size());
-        s.distV.resize(verts.size());
-        s.W.resize(faces.size());
-        s.blockFaces.resize(faces.size());
-        for (std::size_t f = 0; f < faces.size(); ++f) {
-            const FaceWork& w = s.faces[f];
-            using simd::splat;
-            s.blockFaces[f] = {splat(w.n.x()), splat(w.n.y()), splat(w.n.z()),
-                               splat(w.d.x()), splat(w.d.y()), splat(w.d.z())};
-        }
-        s.twiceArea.resize(tris.size());
-        for (std::size_t t = 0; t < tris.size(); ++t) s.twiceArea[t] = simd::splat(tris[t].twiceArea);
-        if (wantS)
-            evaluateBlocks<true>(s, call, points);
-        else
-            evaluateBlocks<false>(s, call, points);
-    }
+    const Call call{tables.vertices(), tables.triangles(), M, out, s.vertexScale, wantS};
+    evaluateBlocks(s, call, kernel, points);
 }
 
 } // namespace mag::mbm

@@ -41,9 +41,13 @@
 // Van Oosterom-Strackee fractions are multiplied as complex numbers D + iN first);
 // no allocation per point (scratch reused per thread).
 //
-// Throughput: evaluate() takes the points in blocks of 4 (8 where the build targets
-// AVX-512), one SIMD lane per point (SimdMath.hpp: vector log and atan2 to < 1 ulp),
-// and the last points one by one.
+// Throughput: evaluate() takes the points in blocks of 4 (AVX2) or 8 (AVX-512), one
+// SIMD lane per point (SimdMath.hpp: vector log and atan2 to < 1 ulp), the last block
+// padded. The default x86-64 build holds both widths and picks the one the CPU runs at
+// the first call (KernelPath.hpp: MAG_KERNEL=auto|avx2|avx512, setKernelPath()).
+// The per-call tables (the M-dependent coefficients of every edge and face) are kept
+// per thread and reused while a call repeats the last one's tables, M and kernel copy
+// (the wrench evaluates a target's samples in blocks of 32, all with the same source).
 // A lane that needs edgeLogTerm's special forms (within delta L of an edge line or
 // ~1e-4 L of a vertex) is recomputed by the scalar form, so the semantics above hold
 // per point; results agree with the face-by-face form (MBMReference.hpp) to rounding.

@@ -2,6 +2,7 @@
 #include "PolyhedronTables.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <sstream>
@@ -28,6 +29,8 @@ std::uint64_t edgeKey(int a, int b) {
 PolyhedronTables::PolyhedronTables(const std::vector<Vec3>& vertices,
                                    const std::vector<std::array<int, 3>>& triangles,
                                    double coplanarTolerance) {
+    static std::atomic<std::uint64_t> nextId{1};
+    id_ = nextId.fetch_add(1, std::memory_order_relaxed);
     if (triangles.empty()) fail("the mesh has no triangles");
     const int nIn = static_cast<int>(vertices.size());
 

@@ -30,6 +30,7 @@
 #include <Eigen/Geometry>
 
 #include <array>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -100,6 +101,9 @@ public:
     const Vec3& centroid() const { return centroid_; } ///< volume centroid (m)
     double boundingRadius() const { return boundingRadius_; } ///< max |r_v - centroid|
     double maxEdgeLength() const { return maxEdgeLength_; }   ///< over edges() (m)
+    /// Distinct for tables built by different constructor calls; a copy keeps it (same
+    /// contents). evaluate() reuses its per-call tables while the id, M and kernel repeat.
+    std::uint64_t id() const { return id_; }
 
 private:
     std::vector<Vec3> vertices_;
@@ -112,6 +116,7 @@ private:
     Vec3 centroid_ = Vec3::Zero();
     double boundingRadius_ = 0.0;
     double maxEdgeLength_ = 0.0;
+    std::uint64_t id_ = 0;
 };
 
 } // namespace mag::mbm

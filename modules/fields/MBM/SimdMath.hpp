@@ -1,11 +1,15 @@
 // A tiny SIMD layer for the MBM field kernel: 4 doubles per GCC vector (one AVX2
 // register; plain x86-64 lowers each operation to two SSE2 ones; 8 doubles where the
-// build targets AVX-512, e.g. MAG_NATIVE on such a machine), and the two
+// code is compiled for AVX-512: the x86-64-v4 copy of the kernel, or MAG_NATIVE on such
+// a machine), and the two
 // transcendental functions the kernel needs, log (Eq. 14) and atan2 (Eq. 15), to full
 // double accuracy (< 1 ulp, fdlibm's reductions and polynomials). No -ffast-math and no
 // libmvec: results must not depend on the compiler's or the C library's choices.
 //
-// Internal to the MBM module (included by PolyhedronField.cpp and the kernel tests).
+// Internal to the MBM module: included by PolyhedronBlocks.inc, which is compiled once
+// per instruction set (runtime dispatch, KernelPath.hpp). Everything here has internal
+// linkage (static functions, const variables): the copies of different widths never
+// share a symbol, and no function is emitted out of line anyway (always_inline).
 #pragma once
 
 #if defined(__x86_64__) || defined(__i386__)
@@ -21,9 +25,9 @@
 namespace mag::mbm::simd {
 
 #if defined(__AVX512F__)
-inline constexpr int kWidth = 8;
+constexpr int kWidth = 8;
 #else
-inline constexpr int kWidth = 4;
+constexpr int kWidth = 4;
 #endif
 typedef double vd __attribute__((vector_size(8 * kWidth)));
 typedef std::uint64_t vu __attribute__((vector_size(8 * kWidth)));
@@ -31,7 +35,7 @@ typedef std::int64_t vi __attribute__((vector_size(8 * kWidth)));
 /// Result of a comparison: all bits set (true) or clear, per lane.
 using vm = decltype(vd{} < vd{});
 
-#define MAG_SIMD_INLINE inline __attribute__((always_inline))
+#define MAG_SIMD_INLINE static inline __attribute__((always_inline))
 
 MAG_SIMD_INLINE vd splat(double x) {
     vd r;
@@ -80,7 +84,7 @@ MAG_SIMD_INLINE vd fma(vd a, vd b, vd c) {
 #endif
 }
 
-inline constexpr std::uint64_t kSignBit = 0x8000000000000000ull;
+constexpr std::uint64_t kSignBit = 0x8000000000000000ull;
 
 /// 2^-e for x in [2^e, 2^(e+1)), finite normal x > 0 (x * result in [1, 2), exact);
 /// used to renormalize a running product without rounding.

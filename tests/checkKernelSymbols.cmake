@@ -1,0 +1,41 @@
+# cmake -DNM=<nm> -DOBJECTS=<objects> -P checkKernelSymbols.cmake
+# The x86-64-v4 copy of the MBM field kernel (modules/fields/MBM/PolyhedronBlocks.inc)
+# must share no linker symbol with the rest of the program: its only global symbols are
+# in namespace mag::mbm::blocks::x86_64_v4, none of them weak (a weak or unique symbol,
+# e.g. an Eigen or std template instantiated there, could replace the AVX2 program's
+# own copy at link or load time and crash on a CPU without AVX-512), and it has no
+# static initializer (code that would run before the dispatch).
+foreach(obj IN LISTS OBJECTS)
+  execute_process(COMMAND ${NM} -C ${obj} OUTPUT_VARIABLE all RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${NM} failed on ${obj}")
+  endif()
+  execute_process(COMMAND ${NM} -C -g --defined-only ${obj} OUTPUT_VARIABLE globals)
+  string(REPLACE "\n" ";" globals "${globals}")
+  set(bad "")
+  foreach(line IN LISTS globals)
+    if(line STREQUAL "")
+      continue()
+    endif()
+    # "<address> <type> <name>"
+    if(NOT line MATCHES "^[0-9a-fA-F]+ ([A-Za-z]) (.*)$")
+      continue()
+    endif()
+    set(type ${CMAKE_MATCH_1})
+    set(name "${CMAKE_MATCH_2}")
+    # (DW.ref.__gxx_personality_v0: the exception personality pointer, data only)
+    if(name STREQUAL "DW.ref.__gxx_personality_v0")
+      continue()
+    endif()
+    if(type MATCHES "^[WVu]$" OR NOT name MATCHES "^mag::mbm::blocks::x86_64_v4::")
+      string(APPEND bad "  ${type} ${name}\n")
+    endif()
+  endforeach()
+  if(all MATCHES "_GLOBAL__sub_I")
+    string(APPEND bad "  a static initializer (_GLOBAL__sub_I)\n")
+  endif()
+  if(NOT bad STREQUAL "")
+    message(FATAL_ERROR "${obj} exports symbols other code could bind to:\n${bad}")
+  endif()
+  message(STATUS "${obj}: global symbols only in mag::mbm::blocks::x86_64_v4, none weak")
+endforeach()
