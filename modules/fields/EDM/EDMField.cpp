@@ -259,7 +259,9 @@ private:
         const auto key = std::make_pair(&shape, n);
         auto it = cache_.find(key);
         if (it != cache_.end()) {
-            if (it->second.shape.lock().get() == &shape) return *it->second.table;
+            // Alive, so still the shape at this address (expired() only reads the
+            // count; lock() would write to it, shared by every thread's pairs).
+            if (!it->second.shape.expired()) return *it->second.table;
             cache_.erase(it);
         }
         if (!(shape.volume > 0))
