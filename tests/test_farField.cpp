@@ -209,7 +209,7 @@ TEST_CASE("dipoleTolerance: each shape's reach keeps its dipole pairs within the
     const auto& bar = shapes[1].shape;
     const auto& ball = shapes[4].shape;
     // Isotropic shapes reach ~5 R at 1e-3 ((2 c4 / tol)^(1/4) = 4.95); a 3:1 bar's
-    // second moment adds ~1.9 m.
+    // second moment adds ~2 m (reach 2.06 m).
     CHECK(mag::dipoleReachFor(*cube, 1e-3) == Approx(4.95 * cube->boundingRadius).epsilon(1e-3));
     CHECK(mag::dipoleReachFor(*ball, 1e-3) < 5.5 * ball->boundingRadius);  // icosphere: nearly isotropic
     CHECK(mag::dipoleReachFor(*bar, 1e-3) > 100 * bar->boundingRadius);

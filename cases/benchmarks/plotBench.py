@@ -158,27 +158,44 @@ def scaling():
     data = rows("scaling")
     if not data:
         return
-    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(12, 4.2))
-    for t in list(dict.fromkeys(r["threads"] for r in data)):
-        sel = [r for r in data if r["threads"] == t]
-        ax.loglog([int(r["bodies"]) for r in sel], [float(r["msPerStep"]) for r in sel], "o-", label=f"{t} thread(s)")
-    first = [r for r in data if r["threads"] == data[0]["threads"]]
+    fields = list(dict.fromkeys(r.get("field", "hybrid") for r in data))
+    threads = list(dict.fromkeys(r["threads"] for r in data))
+    fig, (ax, ax2, ax3) = plt.subplots(1, 3, figsize=(16, 4.4))
+    for fi, f in enumerate(fields):
+        for ti, t in enumerate(threads):
+            sel = [r for r in data if r.get("field", "hybrid") == f and r["threads"] == t]
+            n = [int(r["bodies"]) for r in sel]
+            ms = [float(r["msPerStep"]) for r in sel]
+            style = dict(color=f"C{fi}", ls="-" if ti == 0 else "--", marker="o", ms=3)
+            ax.loglog(n, ms, label=f"{f}, {t} thread(s)", **style)
+            ax2.semilogx(n, [1e3 * m / k for m, k in zip(ms, n)], label=f"{f}, {t} thread(s)", **style)
+            if ti == 0 and "farFieldMs" in sel[0]:
+                ax2.semilogx(n, [1e3 * float(r["farFieldMs"]) / k for r, k in zip(sel, n)], color=f"C{fi}", ls=":",
+                             lw=1.2, label=f"{f}, 1 thread: bulk dipole sum alone")
+            if ti == 0:
+                for key, mk in (("nearPairs", "s"), ("farPairs", "^"), ("dipolePairs", "o")):
+                    ax3.loglog(n, [int(r[key]) / k or float("nan") for r, k in zip(sel, n)], color=f"C{fi}",
+                               marker=mk, ms=3, label=f"{f}: {key[:-5]}")  # 0: not drawn
+    first = [r for r in data if r.get("field", "hybrid") == fields[0] and r["threads"] == threads[0]]
     n = [int(r["bodies"]) for r in first]
     ref = float(first[-1]["msPerStep"])
     ax.loglog(n, [ref * (k / n[-1]) ** 2 for k in n], "k:", lw=1, label="~ N^2")
-    ax.loglog(n, [ref * k / n[-1] for k in n], "k--", lw=1, label="~ N")
+    ax.loglog(n, [ref * k / n[-1] for k in n], "k-.", lw=1, label="~ N")
     ax.set_xlabel("magnets N")
     ax.set_ylabel("ms per step (wrenches)")
     ax.set_title("Hybrid: cost per step vs number of magnets")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8)
-    for key, label in (("nearPairs", "near (MBM)"), ("farPairs", "far (EDM)"), ("dipolePairs", "dipole")):
-        ax2.loglog(n, [int(r[key]) or float("nan") for r in first], "o-", label=label)  # 0: not drawn
+    ax.legend(fontsize=7)
     ax2.set_xlabel("magnets N")
-    ax2.set_ylabel("pairs")
-    ax2.set_title("Pairs per tier (constant number density)")
+    ax2.set_ylabel("us per magnet per step")
+    ax2.set_title("Cost per magnet (flat = linear)")
     ax2.grid(True, which="both", alpha=0.3)
-    ax2.legend(fontsize=8)
+    ax2.legend(fontsize=6)
+    ax3.set_xlabel("magnets N")
+    ax3.set_ylabel("pairs per magnet")
+    ax3.set_title("Pairs per magnet in each tier (constant density)")
+    ax3.grid(True, which="both", alpha=0.3)
+    ax3.legend(fontsize=6, ncol=2)
     fig.tight_layout()
     fig.savefig(out / "scaling.png", dpi=90)
 
@@ -189,22 +206,34 @@ def kernel():
         return
     meshes = list(dict.fromkeys(r["mesh"] for r in data))
     labels = [f"{m}\n({next(r['triangles'] for r in data if r['mesh'] == m)} tri)" for m in meshes]
+    # the blocked kernel in each copy timed (isa: avx2, avx512; older CSVs have none)
+    isas = list(dict.fromkeys(r.get("isa") or "" for r in data if r["path"] == "fast"))
+
+    def fast(isa):
+        return f"fast {isa}".strip()
+
+    def pick(m, o, p, isa, key):
+        return next((float(r[key]) for r in data if r["mesh"] == m and r["outputs"] == o and r["path"] == p
+                     and (p == "reference" or (r.get("isa") or "") == isa)), float("nan"))
+
     fig, (ax, ax2) = plt.subplots(1, 2, figsize=(12, 4.2))
-    series = [(o, p) for o in ("A+B", "B") for p in ("reference", "fast")]
+    series = [(o, "reference", "") for o in ("A+B", "B")] + [(o, "fast", i) for o in ("A+B", "B") for i in isas]
     width = 0.8 / len(series)
-    for k, (o, p) in enumerate(series):
-        ns = [next((float(r["nsPerPoint"]) for r in data if r["mesh"] == m and r["outputs"] == o and r["path"] == p),
-                   float("nan")) for m in meshes]
-        ax.bar([i + (k - 1.5) * width for i in range(len(meshes))], ns, width, label=f"{o} {p}")
+    for k, (o, p, isa) in enumerate(series):
+        ns = [pick(m, o, p, isa, "nsPerPoint") for m in meshes]
+        label = f"{o} {p if p == 'reference' else fast(isa)}"
+        ax.bar([i + (k - (len(series) - 1) / 2) * width for i in range(len(meshes))], ns, width, label=label)
     ax.set_yscale("log")
     ax.set_xticks(range(len(meshes)), labels)
     ax.set_ylabel("ns per point (one core)")
     ax.set_title("MBM field kernel: cost per point")
     ax.legend(fontsize=8)
-    for k, o in enumerate(("A+B", "B")):
-        sp = [next((float(r["speedup"]) for r in data if r["mesh"] == m and r["outputs"] == o and r["path"] == "fast"),
-                   float("nan")) for m in meshes]
-        ax2.bar([i + (k - 0.5) * 0.4 for i in range(len(meshes))], sp, 0.4, label=o)
+    speedups = [(o, i) for o in ("A+B", "B") for i in isas]
+    width = 0.8 / len(speedups)
+    for k, (o, isa) in enumerate(speedups):
+        sp = [pick(m, o, "fast", isa, "speedup") for m in meshes]
+        ax2.bar([i + (k - (len(speedups) - 1) / 2) * width for i in range(len(meshes))], sp, width,
+                label=f"{o} {fast(isa)}")
     ax2.set_xticks(range(len(meshes)), labels)
     ax2.set_ylabel("speed-up, fast / reference")
     ax2.set_title("SIMD kernel vs face-by-face reference")
