@@ -8,6 +8,7 @@
 #include <magFoam/Case.hpp>
 #include <magFoam/Error.hpp>
 #include <magFoam/Log.hpp>
+#include <magFoam/BodyOverlap.hpp>
 #include <magFoam/MagneticSystem.hpp>
 #include <magFoam/ResultsWriter.hpp>
 #include <magFoam/RigidBodyBackend.hpp>
@@ -51,6 +52,17 @@ void writeResults(ResultsWriter& writer, const MagneticSystem& magnets, const st
     writer.write(t, step, bodies, w, bodyEnergies(bodies, gravity, magnetic));
 }
 
+// Bodies inside each other at the start: named, with how deep; the run goes on
+// (MBM is defined there), but a contact solver will push them apart.
+void warnOverlaps(const Case& c, const std::vector<Body>& bodies) {
+    for (const BodyOverlap& o : findOverlaps(bodies)) {
+        const std::string how = o.depth > 0 ? fmt::format("a vertex {:.3g} m deep", o.depth) : "edges through faces";
+        spdlog::warn("bodies '{}' and '{}' overlap at the start ({}; {}): a contact solver pushes them apart, "
+                     "adding kinetic energy; check their positions",
+                     bodies[o.a].name, bodies[o.b].name, how, (c.dir() / "constant" / "bodies.yaml").string());
+    }
+}
+
 int run(const ArgList& args) {
     Case c = Case::read(args.caseDir(), args.schemesFile());
     const ControlDict& control = c.control();
@@ -71,6 +83,7 @@ int run(const ArgList& args) {
             spdlog::info("Restarting from {} (step {})", folder->string(), step0);
         }
     }
+    if (!restartTime) warnOverlaps(c, bodies);
     backend->setup(bodies);
     ResultsWriter writer(c.dir(), restartTime);
 

@@ -1,0 +1,29 @@
+// Bodies whose meshes overlap in their current placement. A case that starts
+// with two bodies inside each other is almost always a typo in
+// constant/bodies.yaml; a contact solver then pushes them apart with whatever
+// speed that takes (kinetic energy from nowhere), so magFoam reports it.
+#pragma once
+
+#include "magFoam/Body.hpp"
+
+#include <vector>
+
+namespace mag {
+
+struct BodyOverlap {
+    std::size_t a, b;  // indices, a < b
+    // Deepest vertex or face centroid of one body inside the other (m; its
+    // distance to the other's surface); 0 when only edges cross faces.
+    double depth;
+};
+
+// Pairs whose world meshes interpenetrate by more than tol = relTol * max(R_a,
+// R_b) (bounding radii): a vertex or face centroid of one inside the other
+// (winding number) and farther than tol from its surface, or an edge of one crossing a face of the
+// other with both ends and the crossing point more than tol from the face's
+// plane and edges. Bodies that touch (a vertex on a face, faces flush) are not
+// reported. Cost: vertices x triangles for each pair whose bounding spheres
+// overlap; meant for the start of a run.
+std::vector<BodyOverlap> findOverlaps(const std::vector<Body>& bodies, double relTol = 1e-6);
+
+} // namespace mag
