@@ -82,20 +82,9 @@ int edgeTriangleCrossings(const SurfaceMesh& a, const SurfaceMesh& b, bool sameM
     return crossings;
 }
 
-// Generalised winding number of a closed mesh about x (1 inside, 0 outside):
-// sum of the triangles' solid angles (Van Oosterom and Strackee 1983) / 4 pi.
-double windingNumber(const SurfaceMesh& mesh, const Vec3& x) {
-    double sum = 0.0;
-    for (const auto& tri : mesh.triangles) {
-        const Vec3 a = mesh.vertices[tri[0]] - x, b = mesh.vertices[tri[1]] - x, c = mesh.vertices[tri[2]] - x;
-        const double la = a.norm(), lb = b.norm(), lc = c.norm();
-        sum += 2.0 * std::atan2(a.dot(b.cross(c)), la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb);
-    }
-    return sum / (4.0 * pi);
-}
-
 // Two closed meshes are disjoint: no edge of one crosses the other, and no
-// vertex of one lies inside the other (one inside the other without crossings).
+// vertex of one lies inside the other (one inside the other without crossings;
+// core's windingNumber).
 bool disjoint(const SurfaceMesh& a, const SurfaceMesh& b) {
     if (edgeTriangleCrossings(a, b, false) > 0 || edgeTriangleCrossings(b, a, false) > 0) return false;
     return std::abs(windingNumber(b, a.vertices[0])) < 0.5 && std::abs(windingNumber(a, b.vertices[0])) < 0.5;

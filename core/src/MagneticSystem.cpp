@@ -75,7 +75,7 @@ std::vector<Wrench> MagneticSystem::wrenches(const std::vector<Body>& bodies, bo
         const Body& b = bodies[i];
         if (b.magnetizationBody.squaredNorm() == 0) continue;
         index.push_back(i);
-        active.push_back({b.position, b.magneticMoment(), field_->dipoleReach(b), b.fixed});
+        active.push_back(farFieldBody(b, *field_));
     }
     for (const auto& [ai, aj] : nearPairs(active, skipFixedTargets)) {
         const std::size_t i = index[ai], j = index[aj];

@@ -328,6 +328,21 @@ void append(SurfaceMesh& mesh, const SurfaceMesh& part) {
         mesh.triangles.push_back({tri[0] + shift, tri[1] + shift, tri[2] + shift});
 }
 
+double triangleSolidAngle(const Vec3& r1, const Vec3& r2, const Vec3& r3, const Vec3& p) {
+    const Vec3 a = r1 - p, b = r2 - p, c = r3 - p;
+    const double la = a.norm(), lb = b.norm(), lc = c.norm();
+    const double numerator = a.dot(b.cross(c));
+    const double denominator = la * lb * lc + la * b.dot(c) + lb * c.dot(a) + lc * a.dot(b);
+    return 2.0 * std::atan2(numerator, denominator);
+}
+
+double windingNumber(const SurfaceMesh& mesh, const Vec3& p) {
+    double sum = 0;
+    for (const auto& t : mesh.triangles)
+        sum += triangleSolidAngle(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]], p);
+    return sum / (4.0 * pi);
+}
+
 Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
     const Vec3 ab = b - a, ac = c - a, ap = p - a;
     const double d1 = ab.dot(ap), d2 = ac.dot(ap);

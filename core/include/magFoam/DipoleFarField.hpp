@@ -58,6 +58,11 @@ struct FarFieldBody {
     bool fixed;
 };
 
+// A body as the far field sees it, its reach from the field evaluator.
+inline FarFieldBody farFieldBody(const Body& b, const FieldEvaluator& field) {
+    return {b.position, b.magneticMoment(), field.dipoleReach(b), b.fixed};
+}
+
 // The pair test: |c_a - c_b|^2 > (reach_a + reach_b)^2, rounded the same for (a, b)
 // and (b, a) and in the bulk sum.
 bool isDipolePair(const FarFieldBody& a, const FarFieldBody& b);

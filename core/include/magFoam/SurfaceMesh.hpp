@@ -74,6 +74,14 @@ std::string formatPoint(const Vec3& p);
 // Closest point of triangle abc to p (Ericson, Real-Time Collision Detection,
 // Sec. 5.1.5: Voronoi regions of the vertices, edges and face).
 Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+
+// Signed solid angle (sr) of triangle (r1, r2, r3) seen from p (Van Oosterom and
+// Strackee 1983); positive when p lies on the inner side (the triangle
+// counter-clockwise about the outward normal).
+double triangleSolidAngle(const Vec3& r1, const Vec3& r2, const Vec3& r3, const Vec3& p);
+// Generalized winding number of a closed outward mesh at p: the triangles' solid
+// angles / 4 pi; 1 inside, 0 outside, 1/2 on a face.
+double windingNumber(const SurfaceMesh& mesh, const Vec3& p);
 std::string describeVertex(const SurfaceMesh& mesh, int vertex);
 std::string describeTriangle(const SurfaceMesh& mesh, int triangle);
 std::string describeEdge(const SurfaceMesh& mesh, int vertexA, int vertexB);

@@ -4,21 +4,6 @@
 
 namespace mag::edm {
 
-double triangleSolidAngle(const Vec3& r1, const Vec3& r2, const Vec3& r3, const Vec3& p) {
-    const Vec3 a = r1 - p, b = r2 - p, c = r3 - p;
-    const double la = a.norm(), lb = b.norm(), lc = c.norm();
-    const double numerator = a.dot(b.cross(c));
-    const double denominator = la * lb * lc + la * b.dot(c) + lb * c.dot(a) + lc * a.dot(b);
-    return 2.0 * std::atan2(numerator, denominator);
-}
-
-double windingNumber(const SurfaceMesh& mesh, const Vec3& p) {
-    double sum = 0;
-    for (const auto& t : mesh.triangles)
-        sum += triangleSolidAngle(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]], p);
-    return sum / (4.0 * pi);
-}
-
 DipoleTable singleDipole(double volume) {
     DipoleTable t;
     t.positions = {Vec3::Zero()};

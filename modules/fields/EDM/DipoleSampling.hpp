@@ -17,12 +17,7 @@
 
 namespace mag::edm {
 
-/// Signed solid angle (sr) of triangle (r1, r2, r3) seen from p; positive when p lies
-/// on the inner side (the triangle counter-clockwise about the outward normal).
-double triangleSolidAngle(const Vec3& r1, const Vec3& r2, const Vec3& r3, const Vec3& p);
-
-/// Generalized winding number of a closed triangle mesh at p (1 inside, 0 outside).
-double windingNumber(const SurfaceMesh& mesh, const Vec3& p);
+// The inside test of gridDipoles is core's windingNumber (SurfaceMesh.hpp).
 
 /// Dipole positions (body frame) and the volume each one carries: moment = M * volume.
 struct DipoleTable {

@@ -167,7 +167,7 @@ public:
     }
 
     Wrench interaction(const Body& source, const Body& target) const override {
-        if (isDipolePair(farFieldBody(source), farFieldBody(target))) {
+        if (isDipolePair(farFieldBody(source, *this), farFieldBody(target, *this))) {
             dipolePairs_.fetch_add(1, std::memory_order_relaxed);
             spdlog::debug("hybrid: '{}' -> '{}': dipole pair", source.name, target.name);
             return dipolePairWrench(source.magneticMoment(), target.magneticMoment(), target.position - source.position);
@@ -214,8 +214,6 @@ public:
     std::uint64_t farCount() const { return farPairs_; }
 
 private:
-    FarFieldBody farFieldBody(const Body& b) const { return {b.position, Vec3::Zero(), dipoleReach(b), b.fixed}; }
-
     // Gap between the two bodies as the switch measures it (m); `distance`
     // between their centres of mass.
     double gap(const Body& a, const Body& b, double distance) const {

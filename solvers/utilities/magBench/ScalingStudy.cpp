@@ -104,8 +104,7 @@ void scalingStudy(const Dict& study, const std::filesystem::path& caseDir) {
             // The bulk dipole sum alone (its part of the step; the rest is the near
             // and EDM pairs, found by the grid).
             std::vector<FarFieldBody> farBodies;
-            for (const Body& b : bodies)
-                farBodies.push_back({b.position, b.magneticMoment(), system.fieldEvaluator().dipoleReach(b), b.fixed});
+            for (const Body& b : bodies) farBodies.push_back(farFieldBody(b, system.fieldEvaluator()));
             std::vector<Wrench> farWrenches(bodies.size());
             for (int t : counts) {
                 setThreads(t);
