@@ -2,6 +2,8 @@
 
 #include "magFoam/Threads.hpp"
 
+#include "DipoleBlockSum.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -17,9 +19,7 @@
 
 namespace mag {
 
-namespace {
-constexpr double kMu = mu0 / (4.0 * pi);
-}
+using detail::kMu;
 
 Wrench dipolePairWrench(const Vec3& ms, const Vec3& mt, const Vec3& r) {
     const double inv2 = 1.0 / r.squaredNorm();
@@ -125,84 +125,22 @@ std::vector<std::pair<std::size_t, std::size_t>> nearPairs(std::span<const FarFi
     return out;
 }
 
-namespace {
-
-// The bodies as arrays (structure of arrays): the inner loop runs over targets,
-// one per vector lane.
-struct Arrays {
-    std::vector<double> x, y, z, mx, my, mz, reach, fixed;
-};
-
-constexpr std::size_t kBlock = 64;
-
-struct BlockSums {
-    std::array<double, kBlock> fx, fy, fz, tx, ty, tz, e, c;
-};
-
-// Targets i0 .. i0 + m - 1 against every source. Each lane does exactly the
-// scalar sequence of operations (no FMA, IEEE division and sqrt, no sums across
-// lanes), so the result does not depend on the vector width. One division and one
-// sqrt a pair bound the speed (~5 ns a pair on one AVX2 core; AVX-512 gains ~10 %,
-// as wider division is no faster per lane).
-void sumBlock(const Arrays& a, std::size_t n, std::size_t i0, std::size_t m, BlockSums& out) {
-    // Accumulate in local arrays (no aliasing with the inputs: the loop vectorizes).
-    alignas(64) std::array<double, kBlock> fx{}, fy{}, fz{}, tx{}, ty{}, tz{}, e{}, c{};
-    const double *xi = &a.x[i0], *yi = &a.y[i0], *zi = &a.z[i0], *mxi = &a.mx[i0], *myi = &a.my[i0],
-                 *mzi = &a.mz[i0], *ri = &a.reach[i0], *fi = &a.fixed[i0];
-    for (std::size_t j = 0; j < n; ++j) {
-        const double xj = a.x[j], yj = a.y[j], zj = a.z[j], sx = a.mx[j], sy = a.my[j], sz = a.mz[j],
-                     rj = a.reach[j], fj = a.fixed[j];
-        for (std::size_t k = 0; k < m; ++k) {
-            // Target i = i0 + k, source j, r = c_i - c_j (the pair test as in isDipolePair).
-            const double rx = xi[k] - xj, ry = yi[k] - yj, rz = zi[k] - zj;
-            const double d2 = rx * rx + ry * ry + rz * rz;
-            const double lim = ri[k] + rj;
-            // Other pairs (and i = j) are computed with d^2 = 1 and then dropped
-            // by the selects (a NaN position drops out the same way).
-            const bool far = (d2 > lim * lim) & (fi[k] * fj == 0.0);
-            const double inv2 = 1.0 / (far ? d2 : 1.0);
-            const double inv3 = inv2 * std::sqrt(inv2);
-            const double tmx = mxi[k], tmy = myi[k], tmz = mzi[k];
-            const double msr = sx * rx + sy * ry + sz * rz, mtr = tmx * rx + tmy * ry + tmz * rz;
-            const double mm = sx * tmx + sy * tmy + sz * tmz;
-            // B of the source at the target.
-            const double b3 = 3.0 * msr * inv2, kb = kMu * inv3;
-            const double bx = kb * (b3 * rx - sx), by = kb * (b3 * ry - sy), bz = kb * (b3 * rz - sz);
-            const double f = 3.0 * kMu * inv3 * inv2, g = 5.0 * msr * mtr * inv2;
-            fx[k] += far ? f * ((mtr * sx + msr * tmx) + mm * rx - g * rx) : 0.0;
-            fy[k] += far ? f * ((mtr * sy + msr * tmy) + mm * ry - g * ry) : 0.0;
-            fz[k] += far ? f * ((mtr * sz + msr * tmz) + mm * rz - g * rz) : 0.0;
-            tx[k] += far ? tmy * bz - tmz * by : 0.0;
-            ty[k] += far ? tmz * bx - tmx * bz : 0.0;
-            tz[k] += far ? tmx * by - tmy * bx : 0.0;
-            e[k] -= far ? tmx * bx + tmy * by + tmz * bz : 0.0;
-            c[k] += far ? 1.0 : 0.0;
-        }
-    }
-    out = {fx, fy, fz, tx, ty, tz, e, c};
-}
-
-} // namespace
 
 std::uint64_t addDipoleFarField(std::span<const FarFieldBody> bodies, bool skipFixedPairs, std::span<Wrench> out) {
     const std::size_t n = bodies.size();
     if (n < 2 || std::none_of(bodies.begin(), bodies.end(), [](const auto& b) { return std::isfinite(b.reach); }))
         return 0;
-    Arrays a;
-    for (auto* v : {&a.x, &a.y, &a.z, &a.mx, &a.my, &a.mz, &a.reach, &a.fixed}) v->resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        const auto& b = bodies[i];
-        a.x[i] = b.position.x(), a.y[i] = b.position.y(), a.z[i] = b.position.z();
-        a.mx[i] = b.moment.x(), a.my[i] = b.moment.y(), a.mz[i] = b.moment.z();
-        a.reach[i] = b.reach;
-        a.fixed[i] = skipFixedPairs && b.fixed ? 1.0 : 0.0;
-    }
+    detail::DipoleArrays a;
+    a.resize(n);
+    for (std::size_t i = 0; i < n; ++i) a.set(i, bodies[i], skipFixedPairs);
+    constexpr std::size_t kBlock = detail::kBlock;
     const std::size_t nBlocks = (n + kBlock - 1) / kBlock;
     std::vector<double> count(nBlocks, 0.0);
     parallelFor(nBlocks, [&](std::size_t block) {
         const std::size_t i0 = block * kBlock, m = std::min(kBlock, n - i0);
-        BlockSums sums;
-        sumBlock(a, n, i0, m, sums);
+        detail::BlockSums sums;
+        const detail::SourceRange all{0, n};
+        detail::sumBlock(a, i0, m, a, {&all, 1}, sums);
         double pairs = 0;
         for (std::size_t k = 0; k < m; ++k) {
             Wrench& w = out[i0 + k];

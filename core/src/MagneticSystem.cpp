@@ -1,6 +1,6 @@
 #include "magFoam/MagneticSystem.hpp"
 
-#include "magFoam/DipoleFarField.hpp"
+#include "magFoam/DipoleMultipole.hpp"
 #include "magFoam/Threads.hpp"
 
 #include <algorithm>
@@ -8,7 +8,8 @@
 namespace mag {
 
 MagneticSystem::MagneticSystem(const Case& c)
-    : field_(FieldEvaluator::New(c.fieldDict())), induction_(InductionModel::New(c.inductionDict())) {
+    : field_(FieldEvaluator::New(c.fieldDict())), induction_(InductionModel::New(c.inductionDict())),
+      farField_(FarFieldSettings::read(c.magSchemes().subOrEmpty("farField"))) {
     c.magSchemes().reportUnused();
 }
 
@@ -87,7 +88,7 @@ std::vector<Wrench> MagneticSystem::wrenches(const std::vector<Body>& bodies, bo
     }
     flush();
     std::vector<Wrench> far(active.size());
-    if (const std::uint64_t n = addDipoleFarField(active, skipFixedTargets, far)) {
+    if (const std::uint64_t n = addDipoleFarField(active, skipFixedTargets, far, farField_)) {
         field_->countDipolePairs(n);
         for (std::size_t a = 0; a < active.size(); ++a) out[index[a]] += far[a];
     }

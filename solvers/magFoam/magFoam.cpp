@@ -93,6 +93,7 @@ int run(const ArgList& args) {
     spdlog::info("magFoam: {} bodies, {} steps of {} s from t = {}, {} thread(s)", bodies.size(), nSteps, dt, t0,
                  threads);
     spdlog::info("  field:      {}", magnets.fieldEvaluator().describe());
+    spdlog::info("  dipole sum: {}", magnets.farField().describe());
     spdlog::info("  induction:  {}", c.hasSoftBodies() ? magnets.inductionModel().describe() : "none (no soft bodies)");
     spdlog::info("  rigid body: {}", backend->describe());
     if (!restartTime) writeResults(writer, magnets, bodies, gravity, t0, step0);

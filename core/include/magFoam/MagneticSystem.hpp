@@ -5,6 +5,7 @@
 #pragma once
 
 #include "magFoam/Case.hpp"
+#include "magFoam/DipoleMultipole.hpp"
 #include "magFoam/FieldEvaluator.hpp"
 #include "magFoam/InductionModel.hpp"
 
@@ -16,7 +17,8 @@ namespace mag {
 
 class MagneticSystem {
 public:
-    // Models from the case's system/magSchemes.yaml (field:, induction:).
+    // Models from the case's system/magSchemes.yaml (field:, induction:, and
+    // farField:, how dipole pairs are summed; DipoleMultipole.hpp).
     explicit MagneticSystem(const Case& c);
     MagneticSystem(std::unique_ptr<FieldEvaluator> field, std::unique_ptr<InductionModel> induction);
 
@@ -47,11 +49,14 @@ public:
                std::span<Vec3> A = {}, std::span<Vec3> H = {}, const Body* exclude = nullptr) const;
 
     const FieldEvaluator& fieldEvaluator() const { return *field_; }
+    const FarFieldSettings& farField() const { return farField_; }
+    void setFarField(const FarFieldSettings& s) { farField_ = s; }
     const InductionModel& inductionModel() const { return *induction_; }
 
 private:
     std::unique_ptr<FieldEvaluator> field_;
     std::unique_ptr<InductionModel> induction_;
+    FarFieldSettings farField_;
 };
 
 } // namespace mag
