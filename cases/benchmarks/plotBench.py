@@ -170,8 +170,14 @@ def scaling():
             ax.loglog(n, ms, label=f"{f}, {t} thread(s)", **style)
             ax2.semilogx(n, [1e3 * m / k for m, k in zip(ms, n)], label=f"{f}, {t} thread(s)", **style)
             if ti == 0 and "farFieldMs" in sel[0]:
+                method = " (multipole past N = {})".format(
+                    max([int(r["bodies"]) for r in sel if r.get("dipoleSum") == "direct"], default=0)
+                ) if any(r.get("dipoleSum") == "multipole" for r in sel) else ""
                 ax2.semilogx(n, [1e3 * float(r["farFieldMs"]) / k for r, k in zip(sel, n)], color=f"C{fi}", ls=":",
-                             lw=1.2, label=f"{f}, 1 thread: bulk dipole sum alone")
+                             lw=1.2, label=f"{f}, 1 thread: dipole sum alone{method}")
+            if ti == 0 and fi == 0 and "directFarFieldMs" in sel[0]:
+                ax2.semilogx(n, [1e3 * float(r["directFarFieldMs"]) / k for r, k in zip(sel, n)], color="k", ls=":",
+                             lw=1.2, label=f"{f}, 1 thread: direct dipole sum (O(N^2))")
             if ti == 0:
                 for key, mk in (("nearPairs", "s"), ("farPairs", "^"), ("dipolePairs", "o")):
                     ax3.loglog(n, [int(r[key]) / k or float("nan") for r, k in zip(sel, n)], color=f"C{fi}",

@@ -6,11 +6,12 @@
 // spacing^3) and most pairs of a large scene are far; no two bounding spheres overlap.
 //
 //   scaling:
-//     bodies: [2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000, 5000]
+//     bodies: [2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000, 5000, 10000, 20000]
 //     spacing: 0.03                    # m, box edge = spacing N^(1/3)
 //     fields:                          # label: field (YAML); the CSV's `field` column
 //       ratio8: "{type: hybrid, near: {type: MBM, quadrature: {type: gauss, n: 6}}}"
 //       tolerance1e-3: "{type: hybrid, near: {...}, dipoleTolerance: 1e-3}"
+//     farField: "{method: auto}"       # how dipole pairs are summed (magSchemes farField:)
 //     threads: [1, 0]                  # 0 = all cores
 //     minSeconds: 0.05                 # timing per run (at least one call); the best
 //     repeats: 2                       #   of `repeats` runs
@@ -19,7 +20,7 @@
 #include "Studies.hpp"
 #include "ThreadStudies.hpp"
 
-#include <magFoam/DipoleFarField.hpp>
+#include <magFoam/DipoleMultipole.hpp>
 #include <magFoam/Error.hpp>
 #include <magFoam/InductionModel.hpp>
 #include <magFoam/Log.hpp>
@@ -68,7 +69,7 @@ PairCounts pairCounts(const FieldEvaluator& f) {
 } // namespace
 
 void scalingStudy(const Dict& study, const std::filesystem::path& caseDir) {
-    const auto ns = study.get<std::vector<double>>("bodies", {2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000, 5000});
+    const auto ns = study.get<std::vector<double>>("bodies", {2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000, 5000, 10000, 20000});
     const double spacing = study.get<double>("spacing", 0.03);
     std::vector<std::pair<std::string, std::string>> fields;
     if (study.has("fields")) {
@@ -80,6 +81,8 @@ void scalingStudy(const Dict& study, const std::filesystem::path& caseDir) {
                   {"tolerance1e-3",
                    "{type: hybrid, near: {type: MBM, quadrature: {type: gauss, n: 6}}, dipoleTolerance: 1e-3}"}};
     }
+    const FarFieldSettings farField =
+        FarFieldSettings::read(Dict::fromString(study.get<std::string>("farField", "{}"), study.keyPath("farField")));
     const auto counts = threadCounts(study);
     const double minSeconds = study.get<double>("minSeconds", 0.05);
     const int repeats = study.get<int>("repeats", 2);
@@ -90,34 +93,38 @@ void scalingStudy(const Dict& study, const std::filesystem::path& caseDir) {
 
     const RestoreThreads restore;
     auto csv = openCsv(caseDir, "scaling.csv",
-                       "field,bodies,threads,msPerStep,farFieldMs,nearPairs,farPairs,dipolePairs");
+                       "field,bodies,threads,msPerStep,farFieldMs,directFarFieldMs,dipoleSum,nearPairs,farPairs,dipolePairs");
     for (const auto& [label, field] : fields) {
         spdlog::info("  {}: {}", label, field);
         for (double nd : ns) {
             const int n = static_cast<int>(nd);
             const std::vector<Body> bodies = scatteredCubes(n, spacing, static_cast<unsigned>(seed));
             // Counts from a fresh evaluator's first call; that call also builds the tables.
-            const MagneticSystem system(evaluator(field),
-                                        InductionModel::New(Dict::fromString("type: none\n", "scaling")));
+            MagneticSystem system(evaluator(field), InductionModel::New(Dict::fromString("type: none\n", "scaling")));
+            system.setFarField(farField);
             (void)system.wrenches(bodies, true);
             const PairCounts pc = pairCounts(system.fieldEvaluator());
-            // The bulk dipole sum alone (its part of the step; the rest is the near
-            // and EDM pairs, found by the grid).
+            // The dipole sum alone (its part of the step; the rest is the near and
+            // EDM pairs, found by the grid), as set and by the direct O(N^2) sum.
             std::vector<FarFieldBody> farBodies;
             for (const Body& b : bodies) farBodies.push_back(farFieldBody(b, system.fieldEvaluator()));
             std::vector<Wrench> farWrenches(bodies.size());
+            const char* sum = farField.usesMultipole(farBodies.size()) ? "multipole" : "direct";
             for (int t : counts) {
                 setThreads(t);
                 const double ms =
                     1e3 * bestSecondsPerCall([&] { (void)system.wrenches(bodies, true); }, minSeconds, repeats);
                 const double farMs = 1e3 * bestSecondsPerCall(
-                                               [&] { (void)addDipoleFarField(farBodies, true, farWrenches); },
+                                               [&] { (void)addDipoleFarField(farBodies, true, farWrenches, farField); },
                                                minSeconds, repeats);
-                csv << label << ',' << n << ',' << t << ',' << ms << ',' << farMs << ',' << pc.nearPairs << ','
-                    << pc.farPairs << ',' << pc.dipolePairs << '\n';
-                spdlog::info("  {:<14} N={:<5} threads {}  {:10.4f} ms per step (dipole sum {:.4f})  pairs near {} "
-                             "far {} dipole {}",
-                             label, n, t, ms, farMs, pc.nearPairs, pc.farPairs, pc.dipolePairs);
+                const double directMs = 1e3 * bestSecondsPerCall(
+                                                  [&] { (void)addDipoleFarField(farBodies, true, farWrenches); },
+                                                  minSeconds, repeats);
+                csv << label << ',' << n << ',' << t << ',' << ms << ',' << farMs << ',' << directMs << ',' << sum << ','
+                    << pc.nearPairs << ',' << pc.farPairs << ',' << pc.dipolePairs << '\n';
+                spdlog::info("  {:<14} N={:<5} threads {}  {:10.4f} ms per step (dipole sum {:.4f}, {}; direct {:.4f})  "
+                             "pairs near {} far {} dipole {}",
+                             label, n, t, ms, farMs, sum, directMs, pc.nearPairs, pc.farPairs, pc.dipolePairs);
             }
         }
     }
