@@ -7,8 +7,9 @@
 // Cost. The bulk sum visits every (target, source) pair once: O(N^2) at a few ns a
 // pair (structure of arrays, one vector lane per target), against ~0.1 us for a
 // dipole pair through the per-pair interface. Near pairs are found by a uniform
-// grid (NearPairs), so they cost O(N) to find. See cases/benchmarks (scaling) for
-// where the O(N^2) term overtakes the near pairs.
+// grid (NearPairs), so they cost O(N) to find. Past a few thousand bodies the
+// fast multipole sum of the same pairs (DipoleMultipole.hpp, O(N)) is faster;
+// MagneticSystem picks one by the magSchemes `farField:` setting.
 //
 // Accuracy: that of the dipole approximation (see the hybrid evaluator: relative
 // O((R/d)^2), O((R/d)^4) for bodies with isotropic second moments); the bulk sum
