@@ -170,9 +170,8 @@ def scaling():
             ax.loglog(n, ms, label=f"{f}, {t} thread(s)", **style)
             ax2.semilogx(n, [1e3 * m / k for m, k in zip(ms, n)], label=f"{f}, {t} thread(s)", **style)
             if ti == 0 and "farFieldMs" in sel[0]:
-                method = " (multipole past N = {})".format(
-                    max([int(r["bodies"]) for r in sel if r.get("dipoleSum") == "direct"], default=0)
-                ) if any(r.get("dipoleSum") == "multipole" for r in sel) else ""
+                multipole = [int(r["bodies"]) for r in sel if r.get("dipoleSum") == "multipole"]
+                method = f" (multipole from N = {min(multipole)})" if multipole else ""
                 ax2.semilogx(n, [1e3 * float(r["farFieldMs"]) / k for r, k in zip(sel, n)], color=f"C{fi}", ls=":",
                              lw=1.2, label=f"{f}, 1 thread: dipole sum alone{method}")
             if ti == 0 and fi == 0 and "directFarFieldMs" in sel[0]:

@@ -174,30 +174,25 @@ private:
         c.centre = 0.5 * (lo + hi);
         for (std::size_t k = c.begin; k < c.end; ++k) c.radius = std::max(c.radius, (pos_[order[k]] - c.centre).norm());
         cells[ci] = c;
-        // Coincident bodies cannot be split: they stay in one (large) leaf.
-        if (c.end - c.begin <= leafSize_ || c.depth >= 60 || c.radius == 0) return;
-        std::array<std::size_t, 9> bound{};
-        bound[0] = c.begin, bound[8] = c.end;
-        auto split = [&](std::size_t b, std::size_t e, int axis) {
-            return static_cast<std::size_t>(
-                std::partition(order.begin() + static_cast<std::ptrdiff_t>(b), order.begin() + static_cast<std::ptrdiff_t>(e),
-                               [&](std::size_t i) { return pos_[i][axis] < c.centre[axis]; }) -
-                order.begin());
-        };
-        bound[4] = split(bound[0], bound[8], 0);
-        for (int h = 0; h < 2; ++h) bound[2 + 4 * h] = split(bound[4 * h], bound[4 * h + 4], 1);
-        for (int q = 0; q < 4; ++q) bound[1 + 2 * q] = split(bound[2 * q], bound[2 * q + 2], 2);
+        // Bodies all on one point are a leaf, however many: no cell pair of theirs
+        // could ever be well apart.
+        if (c.end - c.begin <= leafSize_ || c.depth >= 100 || c.radius == 0) return;
+        // Two halves at the median along the longest side: leaves hold leafSize/2 to
+        // leafSize bodies, enough for full vectors in the direct sums (an octree's
+        // leaves can hold a handful).
+        int axis = 0;
+        (hi - lo).maxCoeff(&axis);
+        const std::size_t mid = c.begin + (c.end - c.begin) / 2;
+        std::nth_element(order.begin() + static_cast<std::ptrdiff_t>(c.begin), order.begin() + static_cast<std::ptrdiff_t>(mid),
+                         order.begin() + static_cast<std::ptrdiff_t>(c.end),
+                         [&](std::size_t i, std::size_t j) { return pos_[i][axis] < pos_[j][axis]; });
         const int first = static_cast<int>(cells.size());
-        int count = 0;
-        for (int o = 0; o < 8; ++o) {
-            if (bound[o] == bound[o + 1]) continue;
-            Cell child;
-            child.begin = bound[o], child.end = bound[o + 1], child.parent = ci, child.depth = c.depth + 1;
-            cells.push_back(child);
-            ++count;
-        }
-        cells[ci].firstChild = first, cells[ci].children = count;
-        for (int k = 0; k < count; ++k) build(first + k);
+        Cell left, right;
+        left.begin = c.begin, left.end = mid, right.begin = mid, right.end = c.end;
+        left.parent = right.parent = ci, left.depth = right.depth = c.depth + 1;
+        cells.push_back(left), cells.push_back(right);
+        cells[ci].firstChild = first, cells[ci].children = 2;
+        build(first), build(first + 1);
     }
 
     std::vector<Vec3> pos_;

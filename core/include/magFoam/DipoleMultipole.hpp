@@ -1,9 +1,10 @@
 // Fast multipole sum of the dipole far field: the same pairs as addDipoleFarField()
 // (DipoleFarField.hpp), in O(N) instead of O(N^2).
 //
-// The bodies go in an octree; every cell carries the multipole expansion of its
-// dipoles' scalar potential phi = sum m . (x - y) / |x - y|^3 (B = -mu0/(4 pi)
-// grad phi) in solid harmonics up to degree p. A dual-tree walk (Dehnen 2002)
+// The bodies go in a k-d tree (halves at the median); every cell carries the
+// multipole expansion of its dipoles' scalar potential
+// phi = sum m . (x - y) / |x - y|^3 (B = -mu0/(4 pi) grad phi) in solid harmonics
+// up to degree p. A dual-tree walk (Dehnen 2002)
 // pairs cells that are well apart, (r_A + r_B) < theta |z_A - z_B|, and whose
 // every body pair is a dipole pair, |z_A - z_B| - r_A - r_B > reach_A + reach_B:
 // such a pair costs one multipole-to-local translation each way. Pairs of leaf
@@ -49,14 +50,14 @@ std::uint64_t addDipoleFarFieldMultipole(std::span<const FarFieldBody> bodies, b
                                          std::span<Wrench> out, const MultipoleSettings& settings = {});
 
 // How MagneticSystem sums the dipole pairs; system/magSchemes.yaml:
-//   farField: {method: auto, multipoleAbove: 5000, order: 12, theta: 0.5, leafSize: 64,
+//   farField: {method: auto, multipoleAbove: 3000, order: 12, theta: 0.5, leafSize: 64,
 //              directPairs: 300}
 // method: direct (all pairs, O(N^2), exact to rounding) | multipole (above) | auto
 // (multipole when more than multipoleAbove bodies take part, else direct).
 struct FarFieldSettings {
     enum class Method { automatic, direct, multipole };
     Method method = Method::automatic;
-    std::size_t multipoleAbove = 5000;
+    std::size_t multipoleAbove = 3000;
     MultipoleSettings multipole;
 
     static FarFieldSettings read(const Dict& d);
