@@ -4,13 +4,13 @@
 // The bodies go in a k-d tree (halves at the median); every cell carries the
 // multipole expansion of its dipoles' scalar potential
 // phi = sum m . (x - y) / |x - y|^3 (B = -mu0/(4 pi) grad phi) in solid harmonics
-// up to degree p. A dual-tree walk (Dehnen 2002)
-// pairs cells that are well apart, (r_A + r_B) < theta |z_A - z_B|, and whose
-// every body pair is a dipole pair, |z_A - z_B| - r_A - r_B > reach_A + reach_B:
-// such a pair costs one multipole-to-local translation each way. Pairs of leaf
-// cells that are not are summed directly, pair by pair, with the test of
-// isDipolePair(), so exactly the dipole pairs are counted and the near pairs are
-// left to the field evaluator. A body then gets B and grad B at its centre from
+// up to degree p. A dual-tree walk (Dehnen 2002) pairs cells that are well apart,
+// (r_A + r_B) < theta |z_A - z_B|, and whose every body pair is a dipole pair,
+// |z_A - z_B| - r_A - r_B > reach_A + reach_B: such a pair costs one
+// multipole-to-local translation each way. Leaf pairs that are not, and cell
+// pairs with at most directPairs body pairs, are summed directly, pair by pair,
+// with the test of isDipolePair(), so exactly the dipole pairs are counted and
+// the near pairs are left to the field evaluator. A body then gets B and grad B at its centre from
 // its cell's local expansion: force grad(m . B), torque m x B, energy -m . B.
 //
 // Accuracy: the truncation error of a translation is O(theta^(p - 2)) relative to
