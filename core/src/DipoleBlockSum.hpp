@@ -39,6 +39,15 @@ inline constexpr std::size_t kBlock = 64;
 // Per-target sums of a block: force, torque, energy and the number of pairs.
 struct BlockSums {
     std::array<double, kBlock> fx{}, fy{}, fz{}, tx{}, ty{}, tz{}, e{}, c{};
+
+    // The wrench on the block's k-th target.
+    Wrench wrench(std::size_t k) const {
+        Wrench w;
+        w.force = Vec3(fx[k], fy[k], fz[k]);
+        w.torque = Vec3(tx[k], ty[k], tz[k]);
+        w.energy = e[k];
+        return w;
+    }
 };
 
 // Adds to acc the wrenches on targets t[i0 .. i0 + m - 1] (m <= kBlock) from the

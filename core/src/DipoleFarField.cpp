@@ -143,10 +143,7 @@ std::uint64_t addDipoleFarField(std::span<const FarFieldBody> bodies, bool skipF
         detail::sumBlock(a, i0, m, a, {&all, 1}, sums);
         double pairs = 0;
         for (std::size_t k = 0; k < m; ++k) {
-            Wrench& w = out[i0 + k];
-            w.force += Vec3(sums.fx[k], sums.fy[k], sums.fz[k]);
-            w.torque += Vec3(sums.tx[k], sums.ty[k], sums.tz[k]);
-            w.energy += sums.e[k];
+            out[i0 + k] += sums.wrench(k);
             pairs += sums.c[k];
         }
         count[block] = pairs;

@@ -400,9 +400,7 @@ std::uint64_t addDipoleFarFieldMultipole(std::span<const FarFieldBody> bodies, b
                     shiftLocal(&L[ci * S], Vec3(a.x[b], a.y[b], a.z[b]) - c.centre, p, 2, R.data(), Lb.data());
                     w = localWrench(Lb.data(), Vec3(a.mx[b], a.my[b], a.mz[b]));
                 }
-                w.force += Vec3(sums.fx[k], sums.fy[k], sums.fz[k]);
-                w.torque += Vec3(sums.tx[k], sums.ty[k], sums.tz[k]);
-                w.energy += sums.e[k];
+                w += sums.wrench(k);
                 bodyPairs[b] = pairs[ci] + sums.c[k];
                 if (a.fixed[b] == 0.0) out[body[b]] += w;
             }
@@ -425,10 +423,7 @@ std::uint64_t addDipoleFarFieldMultipole(std::span<const FarFieldBody> bodies, b
             const detail::SourceRange all{0, nb};
             detail::sumBlock(f, i0, m, a, {&all, 1}, sums);
             for (std::size_t k = 0; k < m; ++k) {
-                Wrench& w = out[body[fixedK[i0 + k]]];
-                w.force += Vec3(sums.fx[k], sums.fy[k], sums.fz[k]);
-                w.torque += Vec3(sums.tx[k], sums.ty[k], sums.tz[k]);
-                w.energy += sums.e[k];
+                out[body[fixedK[i0 + k]]] += sums.wrench(k);
                 bodyPairs[fixedK[i0 + k]] = sums.c[k];
             }
         });
