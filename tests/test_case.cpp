@@ -1,4 +1,4 @@
-// Case reading: every geometry and orientation form of DESIGN.md §3, and the
+// Case reading: every geometry and orientation form (docs/case-reference.md#bodies), and the
 // errors users get for bad dictionaries (file, key, what was expected).
 #include "caseFixture.hpp"
 

@@ -1,5 +1,5 @@
 // Tests of the LLG induction model (modules/induction/LLG; paper Sec. 4.3, Eqs. 2, 19,
-// 20; PHYSICS.md "Induction"), selected by name like an app does. Independent
+// 20; docs/physics.md#induction), selected by name like an app does. Independent
 // references only:
 //   - the closed-form equilibrium of Eqs. 19-20 for D = I/k: M = k B/mu0 (Eq. 2) while
 //     k|B|/mu0 < Ms, else |M| = Ms along B, with B from a test evaluator (uniform

@@ -1,6 +1,6 @@
 // The MBM plugin through the FieldEvaluator interface: world-frame handling
 // (a rigidly rotated and translated scene gives the rotated wrench), the
-// PHYSICS.md reference point, and bad input (open mesh, zero magnetization,
+// reference offset point (docs/physics.md#reference-values), and bad input (open mesh, zero magnetization,
 // coincident bodies): clear errors or correct zeros, never NaN.
 #include "oracles/akounYonnet.hpp"
 
@@ -35,12 +35,12 @@ std::unique_ptr<mag::FieldEvaluator> mbm(const std::string& extra = "") {
 
 } // namespace
 
-TEST_CASE("MBM plugin: PHYSICS.md offset point, in any world frame", "[mbm][plugin]") {
+TEST_CASE("MBM plugin: the reference offset point, in any world frame", "[mbm][plugin]") {
     auto field = mbm();
     // Upper cube at (5, 0, 12) mm: F = (-6.586, 0, -7.904) N, Ty = 0.019754 N m.
     const Body a = cube(0.01, Vec3::Zero()), b = cube(0.01, Vec3(0.005, 0, 0.012));
     const mag::Wrench w = field->interaction(a, b);
-    // Reference digits: 4 significant in PHYSICS.md; the quadrature converged to 1e-7.
+    // Reference digits: 4 significant in docs/physics.md#reference-values; the quadrature converged to 1e-7.
     CHECK(w.force.x() == Approx(-6.586).epsilon(1e-3));
     CHECK(w.force.z() == Approx(-7.904).epsilon(1e-3));
     CHECK(w.totalTorque().y() == Approx(0.019754).epsilon(1e-3));

@@ -1,5 +1,5 @@
-// Tests of the independent oracles in tests/oracles/ against PHYSICS.md's reference
-// values, against classical closed forms, against brute-force quadrature and against
+// Tests of the independent oracles in tests/oracles/ against the reference values
+// of docs/physics.md#reference-values, against classical closed forms, against brute-force quadrature and against
 // each other. The oracles are then used to test the production code.
 #include <catch2/catch.hpp>
 
@@ -309,7 +309,7 @@ TEST_CASE("sphere: surface-charge quadrature gives -M/3 inside and the dipole ou
 // akounYonnet.hpp
 // ---------------------------------------------------------------------------------
 
-TEST_CASE("Akoun-Yonnet: PHYSICS.md gap table for two 1 cm, 1 T cubes", "[oracle][AY]") {
+TEST_CASE("Akoun-Yonnet: the reference gap table for two 1 cm, 1 T cubes", "[oracle][AY]") {
     struct Row { double gap, F; };
     const Row table[] = {{0.2e-3, 28.4021}, {0.5e-3, 24.703}, {1e-3, 20.360}, {2e-3, 14.673},
                          {5e-3, 6.568},     {10e-3, 2.251},   {20e-3, 0.4635}, {50e-3, 0.02929}};
@@ -355,7 +355,8 @@ TEST_CASE("Akoun-Yonnet: symmetry and Newton's third law", "[oracle][AY]") {
 }
 
 TEST_CASE("Akoun-Yonnet: overlap and contact, charge and Amperian", "[oracle][AY]") {
-    SECTION("PHYSICS.md: 1 cm cubes at face gap -0.5 cm") {
+    // docs/physics.md#overlap-models
+    SECTION("1 cm cubes at face gap -0.5 cm") {
         const Vector3d c2(0, 0, 0.005);
         const Vector3d Fc = oracle::akounYonnetForce(cm3, Vector3d::Zero(), cm3, c2, 1, 1);
         const Vector3d Fa = oracle::amperianForceCuboids(cm3, Vector3d::Zero(), cm3, c2, 1, 1);
@@ -368,7 +369,7 @@ TEST_CASE("Akoun-Yonnet: overlap and contact, charge and Amperian", "[oracle][AY
         const double eps = 1e-12;  // 1 pm: one-sided limits within O(eps/gap-scale)
         auto Fc = [&](double z) { return oracle::akounYonnetForce(cm3, Vector3d::Zero(), cm3, Vector3d(0, 0, z), 1, 1).z(); };
         auto Fa = [&](double z) { return oracle::amperianForceCuboids(cm3, Vector3d::Zero(), cm3, Vector3d(0, 0, z), 1, 1).z(); };
-        // PHYSICS.md values quoted to 4 digits
+        // docs/physics.md#contact, values quoted to 4 digits
         CHECK(relDiff(Fc(0.01 + eps), -32.38) < 2e-4);
         CHECK(relDiff(Fc(0.01 - eps), 47.20) < 2e-4);
         // exactly touching: the mean of the two limits (documented convention;
@@ -475,7 +476,7 @@ TEST_CASE("charge quadrature equals Akoun-Yonnet (gaps, offsets, overlap)", "[or
     }
 }
 
-TEST_CASE("charge quadrature: PHYSICS.md force and torque references", "[oracle][quadrature]") {
+TEST_CASE("charge quadrature: the reference forces and torques", "[oracle][quadrature]") {
     SECTION("Janssen: 40x40x20 mm, 1.3 T, offset (20, 0, 30) mm") {
         const double M = 1.3 / mu0;
         const Cuboid a{Vector3d::Zero(), Vector3d(0.02, 0.02, 0.01), Vector3d(0, 0, M)};

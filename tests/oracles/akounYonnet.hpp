@@ -29,7 +29,7 @@
 // Amperian (energy) force: F_amp = -grad_{c2} U, U = -int_V2 M2 . B1 dV; it differs
 // from the charge force only by the mu0 M1 term of B1 inside magnet 1:
 //   F_amp = F_charge + (J1 J2 / mu0) grad_{c2} V_overlap
-// (PHYSICS.md: two 1 cm cubes, 1 T, coaxial, face gap -0.5 cm: +28.55 N charge,
+// (docs/physics.md#overlap-models: two 1 cm cubes, 1 T, coaxial, face gap -0.5 cm: +28.55 N charge,
 // -51.03 N Amperian). V_overlap is the product of the three interval overlaps; its
 // gradient is taken as the mean of the one-sided derivatives where it has a kink
 // (exact contact, equal faces), which makes the Amperian force continuous there.

@@ -1,8 +1,8 @@
 // Independent test oracle: point dipoles and uniformly magnetized spheres.
 //
 //   B(r) = mu0/(4 pi) [3 (m . rh) rh - m] / |r|^3,  r = point - dipole position
-//   Force on dipole m (at x) from dipole m_s (at x_s), r = x - x_s (PHYSICS.md,
-//   corrected paper Eq. 5; F = grad(m . B_s)):
+//   Force on dipole m (at x) from dipole m_s (at x_s), r = x - x_s (paper Eq. 5
+//   corrected, docs/physics.md#dipoles-and-edm; F = grad(m . B_s)):
 //     F = 3 mu0/(4 pi |r|^5) [ (m.r) m_s + (m_s.r) m + (m.m_s) r - 5 (m.r)(m_s.r) r/|r|^2 ]
 //   Torque on m about its own position: T = m x B_s(x) (paper Eq. 6). The pair
 //   conserves angular momentum: T + T_s + x x F + x_s x F_s = 0 (F_s = -F).

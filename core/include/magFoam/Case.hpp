@@ -1,4 +1,4 @@
-// A case folder (DESIGN.md §3): reads every dictionary into the object model.
+// A case folder (docs/case-reference.md#case-folder): reads every dictionary into the object model.
 //
 //   case/system/controlDict.yaml    run controls        (ControlDict)
 //   case/system/magSchemes.yaml     field: / induction: (kept as Dicts for the

@@ -44,7 +44,7 @@ double boundingSphereRadius(const SurfaceMesh& mesh, const Vec3& centre);
 Mat3 inertiaAbout(const MassProperties& properties, const Vec3& point);
 
 // Moves the mesh so that its centre of mass is the origin (a body's frame, see
-// DESIGN.md 3); returns the centre of mass it had, i.e. the translation undone.
+// docs/physics.md#units-and-conventions); returns the centre of mass it had, i.e. the translation undone.
 Vec3 recentre(SurfaceMesh& mesh);
 
 } // namespace mag

@@ -1,4 +1,4 @@
-// Shapes from the `geometry:` entry of a body (DESIGN.md §3):
+// Shapes from the `geometry:` entry of a body (docs/case-reference.md#geometry):
 //
 //   geometry: {box: {size: [0.01, 0.01, 0.01]}}
 //   geometry: {sphere: {radius: 0.005, subdivisions: 3}}      # icosphere

@@ -12,7 +12,7 @@ using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
 using Quat = Eigen::Quaterniond;
 
-// Vacuum permeability, the exact pre-2019 SI value (PHYSICS.md), in T m / A.
+// Vacuum permeability, the exact pre-2019 SI value (docs/physics.md#units-and-conventions), in T m / A.
 inline constexpr double mu0 = 4.0e-7 * std::numbers::pi;
 inline constexpr double pi = std::numbers::pi;
 

@@ -287,7 +287,7 @@ double edgeLogTerm(const Vec3& a, const Vec3& b, double R1, double R2, double L,
         return displacedEdgeLogTerm(-a.dot(delta) / L, rhoMin, L);
     }
     // Beyond the ends (outside the segment's diametral sphere). Far away S - L is not
-    // small and log1p keeps omega ~ L/R accurate (PHYSICS.md far-field form). Farther
+    // small and log1p keeps omega ~ L/R accurate (docs/physics.md#stable-forms). Farther
     // than 1e-4 L from a vertex the clamp is skipped: moving the point delta L off the
     // line would change omega by < (delta / 1e-4)^2 = 1e-10 there.
     const double SmL = S - L;
