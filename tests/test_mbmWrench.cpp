@@ -3,7 +3,7 @@
 // References are independent of the kernel: the Akoun-Yonnet closed form and its
 // Amperian counterpart (tests/oracles/akounYonnet.hpp), the closed-form cuboid field
 // integrated by brute-force split/graded Gauss quadrature over the target's volume or
-// surface (tests/oracles/cuboidField.hpp), published values (PHYSICS.md), and the
+// surface (tests/oracles/cuboidField.hpp), published values (docs/physics.md#reference-values), and the
 // conservation laws (Newton's third law, F = -grad U, T = -dU/dtheta).
 #include <catch2/catch.hpp>
 
@@ -305,7 +305,7 @@ TEST_CASE("regular rule: the paper's Fig. 5 numbers identify the cell-centre var
     const PolyhedronTables cube(m.V, m.T);
     const double d = 0.0002; // 0.02 cm
     const double exact = -akounYonnetZ(d);
-    CHECK(exact == Approx(28.4021).epsilon(1e-5)); // PHYSICS.md: exact 28.4021 N
+    CHECK(exact == Approx(28.4021).epsilon(1e-5)); // docs/physics.md#reference-values: exact 28.4021 N
     // Our `regular`: centres of an n x n grid of cells per square face.
     const double f2 = -coaxialForce(cube, buildSurfaceQuadrature(cube, QuadratureRule::regular, 2), d, OverlapModel::charge);
     const double f20 = -coaxialForce(cube, buildSurfaceQuadrature(cube, QuadratureRule::regular, 20), d, OverlapModel::charge);
@@ -392,7 +392,7 @@ TEST_CASE("gauss rule: force between coaxial cubes vs Akoun-Yonnet at every gap"
         CHECK(coaxialForce(cube, gauss.at(10), d, OverlapModel::amperian) ==
               Approx(coaxialForce(cube, gauss.at(10), d, OverlapModel::charge)).epsilon(1e-12));
     }
-    // PHYSICS.md reference values (independent, 4-5 digits)
+    // docs/physics.md#reference-values (independent, 4-5 digits)
     const std::pair<double, double> published[] = {{0.0005, 24.703}, {0.001, 20.360}, {0.002, 14.673},
                                                    {0.005, 6.568},   {0.01, 2.251},   {0.02, 0.4635}};
     for (const auto& [d, F] : published)
@@ -418,7 +418,7 @@ TEST_CASE("overlap: charge follows Akoun-Yonnet, amperian its energy force; full
         CHECK(std::abs(fc - ay) <= 1e-4 * std::abs(ay) + 1e-4);
         CHECK(std::abs(fa - amp) <= 1e-4 * std::abs(amp) + 1e-4);
     }
-    // PHYSICS.md: d = -0.5 cm: +28.55 N charge (apart), -51.03 N Amperian (deeper)
+    // docs/physics.md#overlap-models: d = -0.5 cm: +28.55 N charge (apart), -51.03 N Amperian (deeper)
     CHECK(coaxialForce(cube, q, -0.005, OverlapModel::charge) == Approx(28.55).epsilon(2e-4));
     CHECK(coaxialForce(cube, q, -0.005, OverlapModel::amperian) == Approx(-51.03).epsilon(2e-4));
     // full overlap: zero by symmetry (samples on the source's faces: principal values)
@@ -480,7 +480,7 @@ TEST_CASE("Newton's third law: |F12 + F21| / |F12| falls with refinement", "[mbm
 
 TEST_CASE("published wrenches: Akoun-Yonnet 1984 and Janssen torque", "[mbm][wrench]") {
     // Akoun & Yonnet 1984: 20x12x6 mm at the origin, 12x20x6 mm at (-4+d, -4, 8) mm,
-    // J = 0.38 T along +z (PHYSICS.md closed-form values).
+    // J = 0.38 T along +z (docs/physics.md#reference-values, closed form).
     const Mesh m1 = boxMesh(Vec3(0.010, 0.006, 0.003));
     const Mesh m2 = boxMesh(Vec3(0.006, 0.010, 0.003));
     const PolyhedronTables t1(m1.V, m1.T), t2(m2.V, m2.T);

@@ -33,7 +33,7 @@
 //
 // Wrench on the target (world frame), summed over all source x target dipole pairs:
 //   F_k = 3 mu0/(4 pi r^5) [ (m.r) m_i + (m_i.r) m + (m.m_i) r - 5 (m.r)(m_i.r) r / r^2 ]
-//         (Eq. 5 as corrected in PHYSICS.md; Eq. 5 as printed has |r|^4)
+//         (Eq. 5 corrected, docs/physics.md#dipoles-and-edm; printed with |r|^4)
 //   force = sum_k F_k;  torque (Eq. 6) = sum_k m_k x B(r_k);
 //   mechanicalTorque = sum_k (r_k - r_c) x F_k about the target's COM r_c;
 //   energy = -sum_k m_k . B(r_k).

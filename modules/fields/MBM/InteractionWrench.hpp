@@ -37,7 +37,8 @@
 
 namespace mag::mbm {
 
-/// How the source's field acts on target samples inside the source (PHYSICS.md).
+/// How the source's field acts on target samples inside the source
+/// (docs/physics.md#overlap-models).
 enum class OverlapModel {
     charge,  ///< mu0 H (Akoun-Yonnet, pushes overlapping bodies apart); the default
     amperian ///< B (energy-conserving current model, continuous at contact)

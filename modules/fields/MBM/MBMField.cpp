@@ -8,7 +8,8 @@
 // |                 |         | or gauss (n x n Gauss-Legendre per face)           |
 // | quadrature.n    | 10      | points per face edge, 1..100                        |
 // | overlap         | charge  | charge (Akoun-Yonnet: pushes overlapping magnets   |
-// |                 |         | apart) or amperian (energy force), PHYSICS.md      |
+// |                 |         | apart) or amperian (energy force),                 |
+// |                 |         | docs/physics.md#overlap-models                     |
 //
 // A and B of the source are exact (Fabbri, Eqs. 9-15), evaluated in the
 // source's body frame on the target's boundary samples moved there; only the

@@ -8,14 +8,14 @@
 //   omega_e = ln((R1 + R2 + L) / (R1 + R2 - L))                          (Eq. 14)
 //   Omega_p = sum_t 2 atan2(a . (b x c), D)  (Van Oosterom-Strackee)    (Eq. 15)
 //
-// Conventions (PHYSICS.md, verified by the tests):
+// Conventions (docs/physics.md#solid-angle, verified by the tests):
 //   - Omega_p > 0 when r lies on the inner side of face p; sum_p Omega_p = 4 pi inside
 //     the body and 0 outside, so insideFraction = sum_p Omega_p / (4 pi).
 //   - B includes mu0 M inside the body; H = B/mu0 - M insideFraction is the charge
 //     (demagnetizing) field; scalarPotential phi = M . sum_p W_p n_p / (4 pi) is the
 //     magnetic scalar potential of the surface charge M . n, with H = -grad phi.
 //
-// Numerically stable forms (PHYSICS.md):
+// Numerically stable forms (docs/physics.md#stable-forms):
 //   - omega_e far away: log1p(2L / (S - L)), S = R1 + R2;
 //   - near the segment (a . b < 0): ln[(S + L)^2 (R1 R2 - a . b) / (2 |a x (r2 - r1)|^2)];
 //   - triple product a . (b x c) = 2 area (a . n_p), a . n_p = (r_v - r) . n_p from one
@@ -61,7 +61,8 @@
 
 namespace mag::mbm {
 
-/// Vacuum permeability (T m / A), 4e-7 pi exactly as a double (PHYSICS.md).
+/// Vacuum permeability (T m / A), 4e-7 pi exactly as a double
+/// (docs/physics.md#units-and-conventions).
 inline constexpr double mu0 = 4e-7 * std::numbers::pi;
 
 /// Relative edge regularization delta: omega_e uses max(distance to the edge line,
