@@ -21,8 +21,9 @@
 //     and on the extensions of the edge lines;
 //   - atan(u v / (w R)) is written sgn(w) * atan2(u v, |w| R): no division by w.
 //   The corner sums and the two opposite faces still cancel in the far field: relative
-//   error grows like eps * (r/size)^3 (measured vs the dipole M V: 1e-9 at 100 and 300
-//   sizes, 1.6e-8 at 1000, 5e-5 at 1e4); beyond ~300 sizes use the dipole (dipole.hpp).
+//   error grows like eps * (r/size)^3 (test_oracles.cpp, "cuboid: far field equals the
+//   dipole M V": within 1e-8 of the dipole M V at 100 sizes); a few hundred sizes away
+//   use the dipole (dipole.hpp).
 //
 // Values ON the boundary of the cuboid (defined, tested):
 //   - on a face plane, inside the face: the normal H contribution of that face is the

@@ -18,9 +18,10 @@
 //            Gauss-Legendre rule: (u, v) in [0,1]^2 -> r0 + u (r1 - r0) + u v (r2 - r1),
 //            weight 2 area u w_u w_v, exact for total degree <= 2n - 2 (its points
 //            cluster at r0); other faces: each triangle with the triangle rule.
-//            Measured on coaxial 1 cm cubes (test_mbmWrench.cpp): n = 20 (400 per face)
-//            is within 1e-5 of Akoun-Yonnet at a 0.02 cm gap, n = 10 within 1.5e-5 at
-//            0.1 cm; convergence is spectral once the points resolve the gap.
+//            Coaxial 1 cm cubes (test_mbmWrench.cpp, "gauss rule: force between coaxial
+//            cubes"): n = 20 (400 per face) stays within 1e-4 of Akoun-Yonnet at every
+//            gap from 0.02 cm, n = 10 within 1e-3 from 0.1 cm; convergence is spectral
+//            once the points resolve the gap.
 //            Limitation: a source edge running close beneath the INTERIOR of a face
 //            (not its rim, where Gauss points cluster) needs a larger n.
 //
