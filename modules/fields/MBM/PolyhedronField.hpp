@@ -50,8 +50,8 @@
 // (the wrench evaluates a target's samples in blocks of 32, all with the same source).
 // A lane that needs edgeLogTerm's special forms (within delta L of an edge line or
 // ~1e-4 L of a vertex) is recomputed by the scalar form, so the semantics above hold
-// per point; results agree with the face-by-face form (MBMReference.hpp) to rounding.
-// About 5-10x faster than the face-by-face form (cases/benchmarks, `kernel` study).
+// per point; results agree with the face-by-face form (MBMReference.hpp) to rounding
+// (tests/test_mbmKernel.cpp). Timings: the `kernel` study of cases/benchmarks.
 #pragma once
 
 #include "PolyhedronTables.hpp"
