@@ -47,6 +47,32 @@ std::optional<std::filesystem::path> latestTimeFolder(const std::filesystem::pat
     return best;
 }
 
+namespace {
+
+// The orientation as written: Dict's Quat is renormalised, which can change
+// the last bit of a unit quaternion; a written one is kept exactly when it is
+// unit to round-off, renormalised otherwise (edited by hand).
+Quat exactOrientation(const Dict& b) {
+    const Quat normalized = b.get<Quat>("orientation");  // checks the four numbers
+    const std::vector<double> c = b.get<std::vector<double>>("orientation");
+    const Quat q(c[0], c[1], c[2], c[3]);
+    return std::abs(q.squaredNorm() - 1) <= 1e-14 ? q : normalized;
+}
+
+} // namespace
+
+std::string formatExact(double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.17g", x);
+    return buf;
+}
+
+std::string formatExact(const Vec3& v) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "[%.17g, %.17g, %.17g]", v.x(), v.y(), v.z());
+    return buf;
+}
+
 RestartState readState(const std::filesystem::path& file, std::vector<Body>& bodies) {
     const Dict d = Dict::fromFile(file);
     RestartState s;
@@ -60,7 +86,7 @@ RestartState readState(const std::filesystem::path& file, std::vector<Body>& bod
         if (i == bodies.size()) b.fail("name", "body '" + name + "' is not in constant/bodies.yaml");
         Body& body = bodies[i];
         body.position = b.get<Vec3>("position");
-        body.orientation = b.get<Quat>("orientation");
+        body.orientation = exactOrientation(b);
         body.velocity = b.get<Vec3>("velocity");
         body.angularVelocity = b.get<Vec3>("angularVelocity");
         body.magnetizationBody = b.get<Vec3>("magnetization");
@@ -97,11 +123,7 @@ std::ofstream openCsv(const std::filesystem::path& file, const std::string& head
     return out;
 }
 
-void vec(std::ostream& os, const Vec3& v) {
-    char buf[96];
-    std::snprintf(buf, sizeof buf, "[%.17g, %.17g, %.17g]", v.x(), v.y(), v.z());
-    os << buf;
-}
+void vec(std::ostream& os, const Vec3& v) { os << formatExact(v); }
 
 } // namespace
 
@@ -139,7 +161,7 @@ void ResultsWriter::writeInduction(double time, long step, const InductionReport
 }
 
 void ResultsWriter::write(double time, long step, const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches,
-                          const Energies& e) {
+                          const Energies& e, const std::vector<StateFile>& states) {
     char line[1024];
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         const Body& b = bodies[i];
@@ -158,13 +180,34 @@ void ResultsWriter::write(double time, long step, const std::vector<Body>& bodie
                   e.total());
     energyCsv_ << line;
     energyCsv_.flush();
-    writeState(time, step, bodies);
+    writeState(time, step, bodies, states);
     writeVtk(time, bodies, wrenches);
 }
 
-void ResultsWriter::writeState(double time, long step, const std::vector<Body>& bodies) const {
+void ResultsWriter::writeState(double time, long step, const std::vector<Body>& bodies,
+                               const std::vector<StateFile>& states) const {
     const auto folder = dir_ / timeName(time);
     std::filesystem::create_directories(folder);
+    // Write then rename: an interrupted write never leaves a broken state.
+    // The models' files first: a bodies.yaml (what a restart looks for)
+    // always has the model state of the same step beside it.
+    auto writeFile = [&](const std::string& name, const std::string& text) {
+        const auto tmp = folder / (name + ".tmp");
+        {
+            std::ofstream out(tmp);
+            out << text;
+            if (!out) throw InputError(tmp.string() + ": cannot write");
+        }
+        std::filesystem::rename(tmp, folder / name);
+    };
+    for (const StateFile& f : states) {
+        if (!f.text.empty()) {
+            writeFile(f.name, f.text);
+        } else {
+            std::error_code ec;
+            std::filesystem::remove(folder / f.name, ec);
+        }
+    }
     std::ostringstream os;
     char buf[128];
     std::snprintf(buf, sizeof buf, "%.17g", time);
@@ -182,10 +225,7 @@ void ResultsWriter::writeState(double time, long step, const std::vector<Body>& 
         vec(os, b.magnetizationBody);
         os << "   # A/m, body frame\n";
     }
-    // Write then rename: an interrupted write never leaves a broken state.
-    const auto tmp = folder / "bodies.yaml.tmp";
-    std::ofstream(tmp) << os.str();
-    std::filesystem::rename(tmp, folder / "bodies.yaml");
+    writeFile("bodies.yaml", os.str());
 }
 
 void ResultsWriter::writeVtk(double time, const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches) {

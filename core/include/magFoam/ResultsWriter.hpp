@@ -1,12 +1,30 @@
-// Results of a transient run (DESIGN.md §5), all under the case folder:
-//   <time>/bodies.yaml            full restartable state of every body
+// Results of a transient run (docs/case-reference.md), all under the case folder:
+//   <time>/bodies.yaml            full restartable state of every body: time,
+//                                 step, and per body position, orientation
+//                                 [w, x, y, z], velocity, angularVelocity and
+//                                 magnetization (body frame), every number
+//                                 with 17 significant digits (reads back bit
+//                                 for bit)
+//   <time>/induction.yaml         state the induction model carries between
+//                                 steps (LLG: each soft body's pair of unit
+//                                 sub-magnetizations, body frame); only when
+//                                 the model has such state
+//   <time>/rigidBody.yaml         state the rigid-body backend carries between
+//                                 steps (free/verlet: the closing half kick
+//                                 and angular momentum; ODE: its random
+//                                 generator and collision-space order); only
+//                                 when it has such state
 //   VTK/bodies_<k>.vtp, bodies.pvd surfaces (world frame) with per-cell body
 //                                 index, magnetization and force; one series
 //   postProcessing/bodies.csv     time,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,
 //                                 Fx,Fy,Fz,Tx,Ty,Tz (magnetic force, total
 //                                 magnetic torque about the COM)
 //   postProcessing/energy.csv     time,kinetic,gravitational,magnetic,total
-// On restart the CSV files are truncated to the restart time and appended.
+// A restart (startFrom: latestTime) reads the newest <time>/bodies.yaml and
+// hands the two model files back to their models, so that it continues bit
+// for bit (docs/architecture.md). The model files are written before
+// bodies.yaml, each by write-then-rename. On restart the CSV files are
+// truncated to the restart time and appended.
 #pragma once
 
 #include "magFoam/Body.hpp"
@@ -41,17 +59,32 @@ struct RestartState {
     double time = 0;
     long step = 0;
 };
-// Read <time>/bodies.yaml into the matching bodies (by name); InputError when
-// a body is missing or a value is not finite.
+// Read <time>/bodies.yaml into the matching bodies (by name), every value as
+// written (a unit quaternion is not renormalised); InputError when a body is
+// missing or a value is not finite.
 RestartState readState(const std::filesystem::path& file, std::vector<Body>& bodies);
+
+// Numbers for the restart files: 17 significant digits ("%.17g"), which
+// strtod (Dict) reads back bit for bit. formatExact(Vec3) is "[x, y, z]".
+std::string formatExact(double x);
+std::string formatExact(const Vec3& v);
+
+// A model's state file in a time folder (InductionModel::writeState,
+// RigidBodyBackend::writeState): its name and YAML text, empty for none.
+struct StateFile {
+    std::string name;
+    std::string text;
+};
 
 class ResultsWriter {
 public:
     // restartTime: drop CSV rows after it (nullopt: start the files anew).
     ResultsWriter(const std::filesystem::path& caseDir, std::optional<double> restartTime);
 
+    // One write time. `states` go into the time folder before bodies.yaml;
+    // one with empty text removes an older file of that name there.
     void write(double time, long step, const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches,
-               const Energies& energies);
+               const Energies& energies, const std::vector<StateFile>& states = {});
 
     // One row of postProcessing/induction.csv (time,step,iterations,residual,
     // converged) per step of a scene with soft bodies; the file is opened at
@@ -59,7 +92,8 @@ public:
     void writeInduction(double time, long step, const InductionReport& report);
 
 private:
-    void writeState(double time, long step, const std::vector<Body>& bodies) const;
+    void writeState(double time, long step, const std::vector<Body>& bodies,
+                    const std::vector<StateFile>& states) const;
     void writeVtk(double time, const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches);
 
     std::filesystem::path dir_;
