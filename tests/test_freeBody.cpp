@@ -366,6 +366,7 @@ TEST_CASE("free: a state changed between steps restarts the integrator", "[freeB
     // Teleport, as a restart would: the next step starts from the new state.
     bodies[0].position = Vec3(5, 5, 5);
     bodies[0].velocity = Vec3(1, 0, 0);
+    rb->setState(bodies);
     w[0].force = Vec3::Zero();
     rb->step(bodies, w, 1e-3);
     CHECK((bodies[0].position - Vec3(5.001, 5, 5)).norm() < 1e-15);

@@ -430,6 +430,7 @@ TEST_CASE("ODE: a state changed between steps is taken over", "[odeBackend]") {
     std::vector<Wrench> w(1);
     rb->step(bodies, w, 1e-3);
     bodies[0].position = Vec3(1, 2, 3), bodies[0].velocity = Vec3(1, 0, 0); // as a restart would
+    rb->setState(bodies);
     rb->step(bodies, w, 1e-3);
     CHECK((bodies[0].position - Vec3(1.001, 2, 3)).norm() < 1e-15); // one 1 mm step: round-off
     CHECK(bodies[0].velocity == Vec3(1, 0, 0));

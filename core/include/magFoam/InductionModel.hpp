@@ -8,6 +8,7 @@
 #include "magFoam/Dictionary.hpp"
 #include "magFoam/Registry.hpp"
 
+#include <iosfwd>
 #include <memory>
 #include <string>
 #include <vector>
@@ -30,6 +31,17 @@ public:
     // Update the magnetization of every soft body in `bodies` (others fixed).
     virtual InductionReport converge(std::vector<Body>& bodies, const FieldEvaluator& field) = 0;
     virtual std::string describe() const = 0;
+
+    // Restart state (docs/architecture.md): what the model carries from one
+    // converge() call to the next beyond the bodies' magnetizations. The
+    // solver writes it at every write time as <time>/induction.yaml and hands
+    // that file back at a restart (startFrom: latestTime), so that the
+    // restarted run continues bit for bit. writeState emits the file's YAML,
+    // every number exact (formatExact, ResultsWriter.hpp), and should begin
+    // with `type: <model>`; writing nothing (the default) means no state, and
+    // no file. readState gets the file back with the bodies as restarted.
+    virtual void writeState(std::ostream& /*yaml*/, const std::vector<Body>& /*bodies*/) const {}
+    virtual void readState(const Dict& /*state*/, const std::vector<Body>& /*bodies*/) {}
 
     using Registry = mag::Registry<InductionModel>;
     static Registry& registry();

@@ -7,6 +7,7 @@
 #include "magFoam/FieldEvaluator.hpp"
 #include "magFoam/Registry.hpp"
 
+#include <iosfwd>
 #include <memory>
 #include <span>
 #include <string>
@@ -23,7 +24,25 @@ public:
 
     // Advance by dt with the given external wrench per body (world frame,
     // torques about each COM) and write the new state back into `bodies`.
+    // Between steps the backend continues from its own state: it does not
+    // look for changes of the bodies (see setState).
     virtual void step(std::vector<Body>& bodies, std::span<const Wrench> wrenches, double dt) = 0;
+
+    // The bodies' poses or velocities were set from outside (a restart, a
+    // script, a test): take them over as they are, exactly, and forget what
+    // was carried from the last step. Called by whoever changed them (the
+    // solver at a restart), never detected by the backend.
+    virtual void setState(const std::vector<Body>& bodies) = 0;
+
+    // Restart state (docs/architecture.md): what a step carries to the next
+    // beyond the bodies' state, written at every write time as
+    // <time>/rigidBody.yaml and handed back at a restart after setState, so
+    // that the restarted run continues bit for bit. Same contract as
+    // InductionModel::writeState: YAML beginning with `type: <backend>`,
+    // numbers exact (formatExact, ResultsWriter.hpp); nothing written (the
+    // default) means no state and no file.
+    virtual void writeState(std::ostream& /*yaml*/, const std::vector<Body>& /*bodies*/) const {}
+    virtual void readState(const Dict& /*state*/, const std::vector<Body>& /*bodies*/) {}
 
     virtual std::string describe() const = 0;
 

@@ -83,6 +83,14 @@
 //      M1,2 = M +- sqrt(Ms^2 - |M|^2) p,   p unit, normal to M and to B
 //    (a soft body starts at M = 0: demagnetized, M1 = -M2 = Ms p normal to B; a given
 //    |M| > Ms is clipped to Ms).
+//  - Restart: the stored pairs are the model's state (InductionModel::writeState):
+//    written at every write time as <time>/induction.yaml,
+//      type: LLG
+//      bodies:
+//        - {name: nut, m1: [x, y, z], m2: [x, y, z]}   # unit, body frame, %.17g
+//    and read back at a restart, so that the restarted run starts every soft body
+//    from the same pair as the uninterrupted one (bit for bit; without the file
+//    the pairs are derived from the written magnetization as above).
 //  - Pseudo-time: only gamma dt enters Eq. 20 and the step is chosen in units of s, so
 //    gamma changes neither the result nor the iterations; the debug log line of each
 //    call gives the pseudo-time reached in seconds, t = s (1 + alpha^2)/(gamma Ms).
@@ -102,6 +110,7 @@
 #include <magFoam/Error.hpp>
 #include <magFoam/FieldEvaluator.hpp>
 #include <magFoam/InductionModel.hpp>
+#include <magFoam/ResultsWriter.hpp>
 
 #include <spdlog/spdlog.h>
 
@@ -110,6 +119,7 @@
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <ostream>
 #include <set>
 #include <string>
 #include <vector>
@@ -407,6 +417,40 @@ public:
                       "LLG (tolerance %g, maxIterations %d, relaxation %g, maxRotation %g rad, gamma %g m/(A s))",
                       set_.tolerance, maxIterations_, set_.relaxation, set_.maxRotation, gamma_);
         return text;
+    }
+
+    // The stored pairs, in the order of the bodies (Restart above).
+    void writeState(std::ostream& os, const std::vector<Body>& bodies) const override {
+        bool any = false;
+        for (const Body& body : bodies) {
+            const auto it = state_.find(body.name);
+            if (it == state_.end()) continue;
+            if (!any)
+                os << "# LLG sub-magnetizations of the soft bodies: unit vectors, body frame\n"
+                      "type: LLG\nbodies:\n";
+            any = true;
+            os << "  - {name: " << body.name << ", m1: " << formatExact(it->second.m1)
+               << ", m2: " << formatExact(it->second.m2) << "}\n";
+        }
+    }
+
+    void readState(const Dict& d, const std::vector<Body>& bodies) override {
+        if (d.get<std::string>("type") != "LLG") {
+            spdlog::warn("{}: induction state of type '{}', not LLG: ignored (the sub-magnetizations start from "
+                         "the magnetizations)",
+                         d.file(), d.get<std::string>("type"));
+            return;
+        }
+        state_.clear();
+        for (const Dict& b : d.list("bodies")) {
+            const std::string name = b.get<std::string>("name");
+            const bool known = std::any_of(bodies.begin(), bodies.end(),
+                                           [&](const Body& x) { return x.name == name && x.soft(); });
+            if (!known) b.fail("name", "no soft body '" + name + "' in constant/bodies.yaml");
+            state_[name] = Pair{b.get<Vec3>("m1"), b.get<Vec3>("m2")};
+            b.reportUnused();
+        }
+        d.reportUnused();
     }
 
 private:

@@ -68,8 +68,11 @@
 // COM from the mesh (Body::mass, inertiaBody; dMassSetParameters), finite
 // rotation mode (exact rotation by w h per step), no auto-disable, no damping.
 // Fixed bodies are static geoms (no ODE body): they never move, their wrench
-// is ignored, their velocities are written as zero. A body whose state is
-// changed between steps (restart, script) is moved there in ODE.
+// is ignored, their velocities are written as zero. setState() (a restart,
+// a script) moves the bodies there in ODE, exactly: ODE renormalises every
+// quaternion it is given, which can change its last bit, so the quaternion
+// handed over is the one ODE turns into the given one (found by trying the
+// neighbouring doubles; ODE's own quaternions are unit already).
 //
 // Collision shapes (`collisionShapes: auto`): box, sphere and cylinder
 // bodies get ODE's native geoms (exact, fast; ODE cylinders lie along z like
@@ -90,11 +93,21 @@
 // Determinism: every ODE call runs under one process-wide lock; ODE's global
 // random generator is set to this backend's own state before each world step
 // and read back after, so runs are bit-identical, also with several backends
-// in one process. dInitODE2 runs once per process. A step depends only on the
-// bodies' state and the wrench (dWorldStep keeps nothing between steps, the
-// sub-step count is computed from the state), so a restart from the written
-// state continues bit for bit; with quickStep the random sequence restarts
-// from `seed` (its state is not in the restart file).
+// in one process. dInitODE2 runs once per process.
+//
+// Restart state. A step depends on the bodies' state, the wrench, and two
+// things ODE carries: its random generator (quickStep's constraint order)
+// and the order of the geoms in the collision space, which sets the order of
+// the contact joints and so the round-off of the LCP solution (ODE moves a
+// geom to the front of the space when it moves; a restart would create them
+// in another order). Nothing else: dWorldStep has no warm starting, joint
+// feedback is off, auto-disable is off, contact joints are made anew every
+// sub-step, the sub-step count comes from the state. Both are written as
+// <time>/rigidBody.yaml
+//   type: ODE
+//   random: 12345                        # ODE's dRandGetSeed()
+//   spaceOrder: [cube, disc, (ground)]   # geoms, first to last; (ground): the plane
+// and restored at a restart, which then continues bit for bit.
 #include "ContactManifold.hpp"
 
 #include <magFoam/Error.hpp>
@@ -103,7 +116,10 @@
 
 #include <ode/ode.h>
 
+#include <magFoam/ResultsWriter.hpp>
+
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
@@ -111,6 +127,7 @@
 #include <map>
 #include <mutex>
 #include <optional>
+#include <ostream>
 #include <sstream>
 #include <stdexcept>
 
@@ -409,10 +426,6 @@ public:
         if (!(dt > 0) || !std::isfinite(dt))
             throw std::invalid_argument("ODE rigid-body backend: time step must be positive and finite");
 
-        // Bodies changed from outside since the last step are moved there.
-        for (std::size_t i = 0; i < bodies.size(); ++i)
-            if (!unchanged(bodies[i], entries_[i])) push(bodies[i], entries_[i]);
-
         const int n = subStepsFor(wrenches, dt);
         stats_.steps += 1, stats_.subSteps += n;
         const double h = dt / n;
@@ -438,6 +451,67 @@ public:
         }
 
         for (std::size_t i = 0; i < bodies.size(); ++i) pull(bodies[i], entries_[i]);
+    }
+
+    void setState(const std::vector<Body>& bodies) override {
+        std::lock_guard lock(odeMutex());
+        if (!world_ || bodies.size() != entries_.size())
+            throw std::logic_error("ODE rigid-body backend: setState() with " + std::to_string(bodies.size()) +
+                                   " bodies after setup() with " + std::to_string(entries_.size()));
+        for (std::size_t i = 0; i < bodies.size(); ++i) push(bodies[i], entries_[i], true);
+    }
+
+    // The random generator and the space order (Restart state above).
+    void writeState(std::ostream& os, const std::vector<Body>& bodies) const override {
+        std::lock_guard lock(odeMutex());
+        if (!space_ || bodies.size() != entries_.size()) return;
+        os << "# ODE backend: its random generator and the order of the collision space\ntype: ODE\nrandom: "
+           << rng_ << "\nspaceOrder: [";
+        const int n = dSpaceGetNumGeoms(space_);
+        for (int k = 0; k < n; ++k) {
+            const auto* e = static_cast<const Entry*>(dGeomGetData(dSpaceGetGeom(space_, k)));
+            os << (k ? ", " : "") << (e ? bodies[static_cast<std::size_t>(e - entries_.data())].name : kGroundName);
+        }
+        os << "]\n";
+    }
+
+    void readState(const Dict& d, const std::vector<Body>& bodies) override {
+        std::lock_guard lock(odeMutex());
+        if (!space_ || bodies.size() != entries_.size())
+            throw std::logic_error("ODE rigid-body backend: readState() before setup()");
+        if (d.get<std::string>("type") != "ODE") {
+            spdlog::warn("{}: not the state of an ODE backend: ignored", d.file());
+            return;
+        }
+        const double random = d.get<double>("random");
+        if (!(random >= 0 && random <= 4294967295.0 && random == std::floor(random)))
+            d.fail("random", "expected ODE's random seed, an integer 0..2^32-1");
+        // The geoms by name; each exactly once.
+        const std::vector<std::string> order = d.get<std::vector<std::string>>("spaceOrder");
+        std::vector<dGeomID> geoms;
+        std::map<std::string, dGeomID> byName;
+        const int n = dSpaceGetNumGeoms(space_);
+        for (int k = 0; k < n; ++k) {
+            const dGeomID g = dSpaceGetGeom(space_, k);
+            const auto* e = static_cast<const Entry*>(dGeomGetData(g));
+            byName[e ? bodies[static_cast<std::size_t>(e - entries_.data())].name : kGroundName] = g;
+        }
+        for (const std::string& name : order) {
+            auto it = byName.find(name);
+            if (it == byName.end())
+                d.fail("spaceOrder", "'" + name + "' is not a body of constant/bodies.yaml" +
+                                         (name == kGroundName ? " (the ground: no ground in rigidBody.yaml)" : "") +
+                                         ", or named twice");
+            geoms.push_back(it->second);
+            byName.erase(it);
+        }
+        if (!byName.empty())
+            d.fail("spaceOrder", "body '" + byName.begin()->first + "' is missing (bodies changed since the write?)");
+        d.reportUnused();
+        rng_ = static_cast<unsigned long>(random);
+        // dSpaceAdd puts a geom at the front: add the last first.
+        for (dGeomID g : geoms) dSpaceRemove(space_, g);
+        for (auto it = geoms.rbegin(); it != geoms.rend(); ++it) dSpaceAdd(space_, *it);
     }
 
     std::string describe() const override {
@@ -473,10 +547,10 @@ private:
         dGeomID geom = nullptr;
         bool fixed = false;
         double mass = 0;
-        // State as last written to the Body, to detect outside changes.
-        Vec3 x = Vec3::Zero(), v = Vec3::Zero(), w = Vec3::Zero();
-        Quat q = Quat::Identity();
     };
+
+    // The ground plane in the restart file's spaceOrder.
+    static constexpr const char* kGroundName = "(ground)";
 
     // Sub-steps for this step: subSteps, or more so that no body travels
     // more than maxTravel times its bounding radius in one sub-step (velocity,
@@ -623,13 +697,16 @@ private:
         dBodySetMass(body, &mass);
     }
 
-    // Body -> ODE (at setup, and when the state was changed from outside).
-    static void push(const Body& b, Entry& e) {
+    // Body -> ODE (at setup, and from setState: `exact`, see the header).
+    static void push(const Body& b, Entry& e, bool exact = false) {
         const Quat& q = b.orientation; // ODE normalises it
         const dQuaternion dq = {q.w(), q.x(), q.y(), q.z()};
         if (e.body) {
             dBodySetPosition(e.body, b.position.x(), b.position.y(), b.position.z());
-            dBodySetQuaternion(e.body, dq);
+            if (exact)
+                setQuaternionExactly(e.body, dq);
+            else
+                dBodySetQuaternion(e.body, dq);
             dBodySetLinearVel(e.body, b.velocity.x(), b.velocity.y(), b.velocity.z());
             dBodySetAngularVel(e.body, b.angularVelocity.x(), b.angularVelocity.y(), b.angularVelocity.z());
         } else {
@@ -642,11 +719,34 @@ private:
             dGeomSetPosition(e.geom, p.x(), p.y(), p.z());
             dGeomSetQuaternion(e.geom, dqg);
         }
-        e.x = b.position, e.q = b.orientation, e.v = b.velocity, e.w = b.angularVelocity;
+    }
+
+    // dBodySetQuaternion with a quaternion that ODE's renormalisation turns
+    // into q itself, where there is one among q's neighbours (up to two
+    // doubles away per component; q unit to round-off); else q as ODE makes it.
+    static void setQuaternionExactly(dBodyID body, const dQuaternion q) {
+        auto same = [&] {
+            const dReal* got = dBodyGetQuaternion(body);
+            return got[0] == q[0] && got[1] == q[1] && got[2] == q[2] && got[3] == q[3];
+        };
+        dBodySetQuaternion(body, q);
+        if (same()) return;
+        std::array<std::array<dReal, 5>, 4> near;
+        for (int i = 0; i < 4; ++i) {
+            const dReal down = std::nextafter(q[i], -1.0), up = std::nextafter(q[i], 1.0);
+            near[i] = {q[i], down, up, std::nextafter(down, -1.0), std::nextafter(up, 1.0)};
+        }
+        for (int c = 1; c < 625; ++c) {
+            dQuaternion trial;
+            for (int i = 0, k = c; i < 4; ++i, k /= 5) trial[i] = near[i][k % 5];
+            dBodySetQuaternion(body, trial);
+            if (same()) return;
+        }
+        dBodySetQuaternion(body, q);
     }
 
     // ODE -> Body.
-    static void pull(Body& b, Entry& e) {
+    static void pull(Body& b, const Entry& e) {
         if (e.body) {
             const dReal* p = dBodyGetPosition(e.body);
             const dReal* q = dBodyGetQuaternion(e.body);
@@ -660,12 +760,6 @@ private:
             b.velocity.setZero();
             b.angularVelocity.setZero();
         }
-        e.x = b.position, e.q = b.orientation, e.v = b.velocity, e.w = b.angularVelocity;
-    }
-
-    static bool unchanged(const Body& b, const Entry& e) {
-        return b.position == e.x && b.velocity == e.v && b.angularVelocity == e.w &&
-               b.orientation.coeffs() == e.q.coeffs();
     }
 
     void destroyWorld() {

@@ -46,10 +46,17 @@
 //   Positions are exactly velocity Verlet's: symplectic, time-reversible,
 //   second order, O(h^2) bounded energy error (8x smaller than holding the
 //   wrench constant in that half kick); a constant force gives the exact
-//   parabola. The price: hidden state. A restart, or any change of a body's
-//   state between steps, starts the integrator afresh (no correction in that
-//   step), so a restarted run differs from an uninterrupted one by
-//   ~ h |a_{n+1} - 2 a_n + a_{n-1}| / 2 in the velocities.
+//   parabola. The price: state carried between steps (per body the last
+//   step's wrench, its prediction, h, deltaT and the world angular momentum
+//   L). It is the backend's restart state, written as <time>/rigidBody.yaml
+//     type: free
+//     integrator: verlet
+//     bodies:
+//       - {name: top, L: [..], a: [..], tau: [..], predictedA: [..],
+//          predictedTau: [..], h: .., deltaT: ..}    # %.17g, SI
+//   and read back at a restart: the restarted run continues bit for bit.
+//   setState() (a state changed from outside) starts the integrator afresh
+//   (no correction in the next step), as does a restart without the file.
 // Rotation, either way: the same kick(s) on the world angular momentum L (the
 // torque is constant in the world frame) around a free rotation for h. The
 // free rotation is a Lie-Poisson splitting of the kinetic energy (Touma and
@@ -73,11 +80,15 @@
 // Fixed bodies never move: their velocities are written as zero and their
 // wrench is ignored.
 #include <magFoam/Error.hpp>
+#include <magFoam/Log.hpp>
 #include <magFoam/RigidBodyBackend.hpp>
 
 #include <Eigen/Eigenvalues>
 
+#include <magFoam/ResultsWriter.hpp>
+
 #include <cmath>
+#include <ostream>
 #include <sstream>
 #include <stdexcept>
 
@@ -165,15 +176,64 @@ public:
             else
                 symplecticEulerStep(b, s, a, tau, dt, x, v, Q, L);
 
-            // Write back; remember what was written (verlet: to detect outside changes).
             b.position = x;
             b.velocity = v;
             b.orientation = (Q * s.principal.conjugate()).normalized();
             b.angularVelocity = Q * (Q.conjugate() * L).cwiseQuotient(s.moments);
             s.started = true;
             s.L = L;
-            s.x = b.position, s.v = b.velocity, s.q = b.orientation, s.w = b.angularVelocity;
         }
+    }
+
+    // verlet: the next step starts afresh from the bodies' state.
+    void setState(const std::vector<Body>& bodies) override {
+        if (bodies.size() != states_.size())
+            throw std::logic_error("free rigid-body backend: setState() with " + std::to_string(bodies.size()) +
+                                   " bodies after setup() with " + std::to_string(states_.size()));
+        for (State& s : states_) s.started = false;
+    }
+
+    // verlet: what the next step continues from (see the header); nothing for
+    // symplecticEuler, a function of the bodies' state alone.
+    void writeState(std::ostream& os, const std::vector<Body>& bodies) const override {
+        if (!verlet_) return;
+        bool any = false;
+        for (std::size_t i = 0; i < bodies.size() && i < states_.size(); ++i) {
+            const State& s = states_[i];
+            if (bodies[i].fixed || !s.started) continue;
+            if (!any) os << "# free backend, velocity Verlet: what each body's next step continues from\n"
+                            "type: free\nintegrator: verlet\nbodies:\n";
+            any = true;
+            os << "  - {name: " << bodies[i].name << ", L: " << formatExact(s.L) << ",\n     a: "
+               << formatExact(s.lastA) << ", tau: " << formatExact(s.lastTau) << ",\n     predictedA: "
+               << formatExact(s.predictedA) << ", predictedTau: " << formatExact(s.predictedTau)
+               << ",\n     h: " << formatExact(s.lastH) << ", deltaT: " << formatExact(s.lastDt) << "}\n";
+        }
+    }
+
+    void readState(const Dict& d, const std::vector<Body>& bodies) override {
+        if (!verlet_) return;
+        if (d.get<std::string>("type") != "free" || d.get<std::string>("integrator", "") != "verlet") {
+            spdlog::warn("{}: not the state of the free backend's verlet integrator: ignored (the integrator "
+                         "starts afresh)", d.file());
+            return;
+        }
+        for (const Dict& e : d.list("bodies")) {
+            const std::string name = e.get<std::string>("name");
+            std::size_t i = 0;
+            while (i < bodies.size() && bodies[i].name != name) ++i;
+            if (i == bodies.size() || i >= states_.size() || bodies[i].fixed)
+                e.fail("name", "no dynamic body '" + name + "' in constant/bodies.yaml");
+            State& s = states_[i];
+            s.L = e.get<Vec3>("L");
+            s.lastA = e.get<Vec3>("a"), s.lastTau = e.get<Vec3>("tau");
+            s.predictedA = e.get<Vec3>("predictedA"), s.predictedTau = e.get<Vec3>("predictedTau");
+            s.lastH = e.get<double>("h"), s.lastDt = e.get<double>("deltaT");
+            if (!(s.lastH > 0) || !(s.lastDt > 0)) e.fail("h", "h and deltaT must be > 0");
+            s.started = true;
+            e.reportUnused();
+        }
+        d.reportUnused();
     }
 
     std::string describe() const override {
@@ -189,14 +249,12 @@ private:
         double mass = 0;
         Vec3 moments = Vec3::Ones();      // principal moments, kg m^2
         Quat principal = Quat::Identity(); // principal frame -> body frame
-        // verlet only:
+        // verlet only (the restart state):
         bool started = false;
         Vec3 L = Vec3::Zero();             // world angular momentum at the end of the last step
         Vec3 lastA = Vec3::Zero(), lastTau = Vec3::Zero();           // wrench of the last step
         Vec3 predictedA = Vec3::Zero(), predictedTau = Vec3::Zero(); // used in its closing half kick
         double lastH = 0, lastDt = 0;
-        Vec3 x, v, w;                      // state as written at the end of the last step
-        Quat q;
     };
 
     // Kick-drift, a function of the body's state alone.
@@ -217,7 +275,7 @@ private:
     void verletStep(const Body& b, State& s, const Vec3& a, const Vec3& tau, double dt, Vec3& x, Vec3& v, Quat& Q,
                     Vec3& L) const {
         const double h = dt / subSteps_;
-        const bool continued = s.started && unchanged(b, s);
+        const bool continued = s.started;
         if (continued) {
             v += 0.5 * s.lastH * (a - s.predictedA);
             L = s.L + 0.5 * s.lastH * (tau - s.predictedTau);
@@ -241,11 +299,6 @@ private:
         }
         s.lastA = a, s.lastTau = tau, s.lastH = h, s.lastDt = dt;
         s.predictedA = predictedA, s.predictedTau = predictedTau;
-    }
-
-    static bool unchanged(const Body& b, const State& s) {
-        return b.position == s.x && b.velocity == s.v && b.angularVelocity == s.w &&
-               b.orientation.coeffs() == s.q.coeffs();
     }
 
     Vec3 gravity_ = Vec3::Zero();
