@@ -1,9 +1,11 @@
 // magFoam: transient solver for rigid magnets (paper Algorithm 1 + a rigid-
 // body backend). Per step: converge induced magnetizations, wrench on every
 // body from all others, hand them to the backend, step it; write results at
-// write times. Restart with `startFrom: latestTime`; SIGINT/SIGTERM write the
-// current state and exit 0; a NaN/inf stops the run with the body and step
-// named, after writing the last good state.
+// write times. Restart with `startFrom: latestTime`: the time folder holds
+// the bodies and the models' own state, so a restart continues bit for bit;
+// SIGINT/SIGTERM write the current state and exit 0; a NaN/inf stops the run
+// with the body and step named, after writing the last good state. Where the
+// run starts, its time axis and its log statistics: TimeLoop.hpp.
 #include <magFoam/ArgList.hpp>
 #include <magFoam/Case.hpp>
 #include <magFoam/Error.hpp>
@@ -14,19 +16,16 @@
 #include <magFoam/RigidBodyBackend.hpp>
 #include <magFoam/Threads.hpp>
 
-#include <chrono>
-#include <cmath>
+#include "TimeLoop.hpp"
+
 #include <csignal>
 
 using namespace mag;
-using Clock = std::chrono::steady_clock;
 
 namespace {
 
 volatile std::sig_atomic_t stopRequested = 0;
 void onSignal(int) { stopRequested = 1; }
-
-double seconds(Clock::time_point since) { return std::chrono::duration<double>(Clock::now() - since).count(); }
 
 // The first body whose state, or wrench if it can move, is not finite.
 const Body* firstNonFinite(const std::vector<Body>& bodies, const std::vector<Wrench>* wrenches) {
@@ -43,13 +42,14 @@ const Body* firstNonFinite(const std::vector<Body>& bodies, const std::vector<Wr
     return nullptr;
 }
 
-// Everything the writers need at a write time: full wrenches and energies.
+// Everything the writers need at a write time: full wrenches and energies,
+// and (`states`) the models' restart files.
 void writeResults(ResultsWriter& writer, const MagneticSystem& magnets, const std::vector<Body>& bodies,
-                  const Vec3& gravity, double t, long step) {
+                  const Vec3& gravity, double t, long step, const std::vector<StateFile>& states) {
     const std::vector<Wrench> w = magnets.wrenches(bodies);
     double magnetic = 0;
     for (const auto& x : w) magnetic += 0.5 * x.energy;  // each pair is seen from both sides
-    writer.write(t, step, bodies, w, bodyEnergies(bodies, gravity, magnetic));
+    writer.write(t, step, bodies, w, bodyEnergies(bodies, gravity, magnetic), states);
 }
 
 // Bodies inside each other at the start: named, with how deep; the run goes on
@@ -63,113 +63,73 @@ void warnOverlaps(const Case& c, const std::vector<Body>& bodies) {
     }
 }
 
+void describeRun(const Case& c, const MagneticSystem& magnets, const RigidBodyBackend& backend,
+                 const solver::TimeLoop& loop, int threads) {
+    spdlog::info("magFoam: {} bodies, {} steps of {} s from t = {}, {} thread(s)", c.bodies().size(), loop.steps(),
+                 loop.deltaT(), loop.startTime(), threads);
+    spdlog::info("  field:      {}", magnets.fieldEvaluator().describe());
+    spdlog::info("  dipole sum: {}", magnets.farField().describe());
+    spdlog::info("  induction:  {}", c.hasSoftBodies() ? magnets.inductionModel().describe() : "none (no soft bodies)");
+    spdlog::info("  rigid body: {}", backend.describe());
+}
+
 int run(const ArgList& args) {
     Case c = Case::read(args.caseDir(), args.schemesFile());
-    const ControlDict& control = c.control();
     const int threads = setThreads(args, c);
     MagneticSystem magnets(c);
     std::unique_ptr<RigidBodyBackend> backend = RigidBodyBackend::New(c.rigidBody());
     const Vec3 gravity = c.rigidBody().get<Vec3>("gravity", Vec3::Zero());
+    const bool soft = c.hasSoftBodies();
     std::vector<Body>& bodies = c.bodies();
-
-    // Start: from startTime, or from the newest time folder.
-    double t0 = control.startTime;
-    long step0 = 0;
-    std::optional<double> restartTime;
-    if (control.startFrom == "latestTime") {
-        if (auto folder = latestTimeFolder(c.dir())) {
-            const RestartState s = readState(*folder / "bodies.yaml", bodies);
-            t0 = s.time, step0 = s.step, restartTime = s.time;
-            spdlog::info("Restarting from {} (step {})", folder->string(), step0);
-        }
-    }
-    if (!restartTime) warnOverlaps(c, bodies);
     backend->setup(bodies);
-    ResultsWriter writer(c.dir(), restartTime);
 
-    const double dt = control.deltaT;
-    const long nSteps = std::max(0L, std::lround((control.endTime - t0) / dt));
-    const long writeEvery = std::max(1L, std::lround(control.writeInterval / dt));
-    spdlog::info("magFoam: {} bodies, {} steps of {} s from t = {}, {} thread(s)", bodies.size(), nSteps, dt, t0,
-                 threads);
-    spdlog::info("  field:      {}", magnets.fieldEvaluator().describe());
-    spdlog::info("  dipole sum: {}", magnets.farField().describe());
-    spdlog::info("  induction:  {}", c.hasSoftBodies() ? magnets.inductionModel().describe() : "none (no soft bodies)");
-    spdlog::info("  rigid body: {}", backend->describe());
-    if (!restartTime) writeResults(writer, magnets, bodies, gravity, t0, step0);
+    // Start: from startTime, or from the newest time folder (bodies and models).
+    const solver::Start start = solver::startRun(c, bodies, magnets.inductionModel(), *backend);
+    if (!start.folder) warnOverlaps(c, bodies);
+    const solver::TimeLoop loop(c.control(), start);
+    ResultsWriter writer(c.dir(), start.folder ? std::optional<double>(start.time) : std::nullopt);
+    auto write = [&](const std::vector<Body>& state, long step, bool withModels) {
+        writeResults(writer, magnets, state, gravity, loop.time(step), step,
+                     withModels ? solver::modelStates(magnets.inductionModel(), *backend, state)
+                                : std::vector<StateFile>{});
+    };
+    describeRun(c, magnets, *backend, loop, threads);
+    if (!start.folder) write(bodies, start.step, true);
 
     std::signal(SIGINT, onSignal);
     std::signal(SIGTERM, onSignal);
-    const auto start = Clock::now();
-    auto lastReport = start;
-    double magneticSeconds = 0, rigidSeconds = 0;
-    long unconvergedSteps = 0, k = 0;
-    // Induction statistics: per step to induction.csv, summed for the log lines.
-    const bool soft = c.hasSoftBodies();
-    long sweepsTotal = 0, sweepsSinceReport = 0, stepsSinceReport = 0;
-    int sweepsMax = 0;
+    solver::RunStatistics stats(loop, soft);
     std::vector<Body> lastGood;  // kept to write on a non-finite state; reused storage
-    for (k = 1; k <= nSteps; ++k) {
-        const long step = step0 + k;
+    for (long step = loop.firstStep(); step <= loop.lastStep(); ++step) {
         lastGood = bodies;
 
         // Algorithm 1: induction loop (only with soft bodies), then wrenches.
-        const auto tm = Clock::now();
+        stats.start(solver::RunStatistics::Phase::magnetic);
         const MagneticSystem::Step magnetic = magnets.step(bodies);
-        const InductionReport& ind = magnetic.induction;
-        if (soft) {
-            writer.writeInduction(t0 + k * dt, step, ind);
-            sweepsTotal += ind.iterations, sweepsSinceReport += ind.iterations, ++stepsSinceReport;
-            sweepsMax = std::max(sweepsMax, ind.iterations);
-        }
-        if (!ind.converged) {
-            ++unconvergedSteps;
-            std::string names;
-            for (const auto& n : ind.unconverged) names += " " + n;
-            spdlog::warn("step {}: induction not converged after {} iterations (residual {:.3g}):{}", step,
-                         ind.iterations, ind.residual, names);
-        }
+        if (soft) writer.writeInduction(loop.time(step), step, magnetic.induction);
+        stats.induction(step, magnetic.induction);
         const std::vector<Wrench>& wrenches = magnetic.wrenches;
-        magneticSeconds += seconds(tm);
 
-        const auto tr = Clock::now();
-        if (!firstNonFinite(bodies, &wrenches)) backend->step(bodies, wrenches, dt);
-        rigidSeconds += seconds(tr);
+        // The rigid-body step under those wrenches.
+        stats.start(solver::RunStatistics::Phase::rigidBody);
+        if (!firstNonFinite(bodies, &wrenches)) backend->step(bodies, wrenches, loop.deltaT());
+        stats.stepDone();
 
         if (const Body* bad = firstNonFinite(bodies, &wrenches)) {
-            const double tGood = t0 + (k - 1) * dt;
-            writeResults(writer, magnets, lastGood, gravity, tGood, step - 1);
+            write(lastGood, step - 1, false);  // the models hold the bad step's state
             throw StateError("non-finite state or wrench of body '" + bad->name + "' in step " +
-                             std::to_string(step) + " (t = " + std::to_string(t0 + k * dt) +
-                             " s); last good state written to " + timeName(tGood) + "/");
+                             std::to_string(step) + " (t = " + std::to_string(loop.time(step)) +
+                             " s); last good state written to " + timeName(loop.time(step - 1)) + "/");
         }
-
-        const double t = t0 + k * dt;
-        if (k % writeEvery == 0 || k == nSteps || stopRequested) writeResults(writer, magnets, bodies, gravity, t, step);
+        const double t = loop.time(step);
+        if (loop.isWriteTime(step) || stopRequested) write(bodies, step, true);
         if (stopRequested) {
             spdlog::info("Stopped by signal at t = {}; state written to {}/", t, timeName(t));
             break;
         }
-        if (seconds(lastReport) > 5.0) {
-            lastReport = Clock::now();
-            const double rate = k / seconds(start);
-            std::string induction;
-            if (soft && stepsSinceReport > 0)
-                induction = fmt::format("  induction {:.1f} sweeps/step", double(sweepsSinceReport) / stepsSinceReport);
-            sweepsSinceReport = stepsSinceReport = 0;
-            spdlog::info("t = {:.6g} s  step {}  {:.1f} steps/s  ETA {:.0f} s{}", t, step, rate, (nSteps - k) / rate,
-                         induction);
-        }
+        stats.progress(t, step);
     }
-    const long done = std::min(k, nSteps);
-    if (done > 0)
-        spdlog::info("End: {} steps in {:.2f} s; ms per step: magnetic {:.3f}, rigid body {:.3f}{}", done,
-                     seconds(start), 1e3 * magneticSeconds / done, 1e3 * rigidSeconds / done,
-                     unconvergedSteps ? "; induction unconverged in " + std::to_string(unconvergedSteps) + " steps"
-                                      : std::string());
-    if (soft && done > 0)
-        spdlog::info("  induction: {:.2f} sweeps per step on average, {} at most (postProcessing/induction.csv)",
-                     double(sweepsTotal) / done, sweepsMax);
+    stats.summary();
     spdlog::info("  field: {}", magnets.fieldEvaluator().describe());
     return 0;
 }

@@ -52,6 +52,7 @@ public:
     const FarFieldSettings& farField() const { return farField_; }
     void setFarField(const FarFieldSettings& s) { farField_ = s; }
     const InductionModel& inductionModel() const { return *induction_; }
+    InductionModel& inductionModel() { return *induction_; }  // restart state (InductionModel::readState)
 
 private:
     std::unique_ptr<FieldEvaluator> field_;

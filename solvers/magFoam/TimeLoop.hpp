@@ -1,0 +1,96 @@
+// The bookkeeping around magFoam's time loop, so that magFoam.cpp holds the
+// paper's Algorithm 1 and the rigid-body step only (docs/architecture.md):
+// - where the run starts: startTime, or (startFrom: latestTime) the newest
+//   time folder, read back into the bodies and the models' own state
+//   (<time>/induction.yaml, <time>/rigidBody.yaml: ResultsWriter.hpp);
+// - the time axis: the steps of the run, their times, which are written;
+// - the model state files written beside bodies.yaml;
+// - the run statistics of the log: timings, induction sweeps and warnings,
+//   progress lines, the end summary.
+#pragma once
+
+#include <magFoam/Body.hpp>
+#include <magFoam/Case.hpp>
+#include <magFoam/ControlDict.hpp>
+#include <magFoam/InductionModel.hpp>
+#include <magFoam/ResultsWriter.hpp>
+#include <magFoam/RigidBodyBackend.hpp>
+
+#include <chrono>
+#include <filesystem>
+#include <optional>
+#include <vector>
+
+namespace mag::solver {
+
+// The state the run starts from: time and step number of the bodies' state,
+// and the time folder it was read from (none at a fresh start).
+struct Start {
+    double time = 0;
+    long step = 0;
+    std::optional<std::filesystem::path> folder;
+};
+
+// startTime, or with startFrom: latestTime the newest time folder: its
+// bodies.yaml into `bodies`, backend.setState(bodies), then each model's
+// file, where present, to its readState. Logs "Restarting from ...".
+Start startRun(const Case& c, std::vector<Body>& bodies, InductionModel& induction, RigidBodyBackend& backend);
+
+// The models' restart files for ResultsWriter::write (empty text: no state).
+std::vector<StateFile> modelStates(const InductionModel& induction, const RigidBodyBackend& backend,
+                                   const std::vector<Body>& bodies);
+
+// Steps are numbered from startTime (step 0) on, also across restarts: step
+// n ends at time startTime + n deltaT, and is written when n is a multiple
+// of writeInterval / deltaT, or the last step of the run. A restart whose
+// time is not on that axis (deltaT or startTime changed) starts a new one
+// at its time.
+class TimeLoop {
+public:
+    TimeLoop(const ControlDict& control, const Start& start);
+
+    long firstStep() const { return firstStep_; }
+    long lastStep() const { return lastStep_; }
+    long steps() const { return lastStep_ - firstStep_ + 1; }
+    double deltaT() const { return dt_; }
+    double startTime() const { return startTime_; }
+    // Time at the end of step n (n = firstStep() - 1: the start).
+    double time(long step) const { return baseTime_ + static_cast<double>(step - baseStep_) * dt_; }
+    bool isWriteTime(long step) const { return step % writeEvery_ == 0 || step == lastStep_; }
+
+private:
+    double dt_, startTime_, baseTime_;
+    long baseStep_, firstStep_, lastStep_, writeEvery_;
+};
+
+// Timings, induction statistics and the log lines about the run's progress.
+class RunStatistics {
+public:
+    enum class Phase { magnetic, rigidBody };
+    RunStatistics(const TimeLoop& loop, bool softBodies);
+
+    // Time the phases of a step: start(magnetic) ... start(rigidBody) ... stepDone().
+    void start(Phase phase);
+    void stepDone();
+    // A step's induction report: summed for the log; warns when unconverged.
+    void induction(long step, const InductionReport& report);
+    // Every 5 s: "t = ... s  step ...  steps/s  ETA ... s" (+ sweeps per step).
+    void progress(double t, long step);
+    // "End: ... steps in ... s; ms per step: ..." and the induction summary.
+    void summary() const;
+
+private:
+    using Clock = std::chrono::steady_clock;
+    void stopTimer();
+
+    const long steps_;
+    const bool soft_;
+    Clock::time_point start_, lastReport_, phaseStart_;
+    std::optional<Phase> phase_;
+    double magneticSeconds_ = 0, rigidSeconds_ = 0;
+    long done_ = 0, unconvergedSteps_ = 0;
+    long sweepsTotal_ = 0, sweepsSinceReport_ = 0, stepsSinceReport_ = 0;
+    int sweepsMax_ = 0;
+};
+
+} // namespace mag::solver
