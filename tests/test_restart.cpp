@@ -1,0 +1,205 @@
+// Restart is exact: a run 0 -> T and a run 0 -> T_split continued with
+// startFrom: latestTime to T write the same numbers, bit for bit (the final
+// bodies.yaml byte for byte, every CSV row). Split times are not multiples of
+// the write interval: the first run writes the state at its endTime, and the
+// models' own state (<time>/induction.yaml, <time>/rigidBody.yaml) with it.
+// One case per piece of carried state: LLG's sub-magnetizations (soft iron),
+// the free backend's verlet kick, ODE (the dropMagnet tutorial; a heap of
+// cubes with quickStep: random generator and collision-space order). And
+// <time>/bodies.yaml reads back exactly what was written.
+#include "caseFixture.hpp"
+
+#include <magFoam/Dictionary.hpp>
+#include <magFoam/MeshPrimitives.hpp>
+#include <magFoam/ResultsWriter.hpp>
+#include <magFoam/ShapeFactory.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <sys/wait.h>
+
+using mag::Vec3;
+
+namespace {
+
+int runIn(const std::filesystem::path& dir, const std::string& log) {
+    const std::string cmd = "cd '" + dir.string() + "' && '" + magtest::appPath("magFoam") + "' > " + log + " 2>&1";
+    return WEXITSTATUS(std::system(cmd.c_str()));
+}
+
+std::string slurp(const std::filesystem::path& p) {
+    std::ifstream in(p);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+// The CSV's lines without those at time t (the extra write of a split run).
+std::vector<std::string> rowsExcept(const std::filesystem::path& csv, double t) {
+    std::istringstream in(slurp(csv));
+    std::vector<std::string> rows;
+    for (std::string line; std::getline(in, line);)
+        if (rows.empty() || std::abs(std::strtod(line.c_str(), nullptr) - t) > 1e-12) rows.push_back(line);
+    return rows;
+}
+
+// controlDict with endTime; `extra` appended (startFrom).
+std::string controlDict(double deltaT, double endTime, double writeInterval, const std::string& extra = "") {
+    std::ostringstream os;
+    os.precision(17);
+    os << "deltaT: " << deltaT << "\nendTime: " << endTime << "\nwriteInterval: " << writeInterval << "\n" << extra;
+    return os.str();
+}
+
+// Run `setup` 0 -> T in one case, and 0 -> split, then restart -> T in another;
+// compare what both wrote.
+template <class Setup>
+void checkExactRestart(Setup setup, double deltaT, double T, double split, double writeInterval,
+                       const std::vector<std::string>& stateFiles) {
+    REQUIRE(std::abs(std::remainder(split, deltaT)) < 1e-6 * deltaT);       // a step
+    REQUIRE(std::abs(std::remainder(split, writeInterval)) > deltaT / 2);  // not a write time
+    magtest::TempCase whole, parts;
+    setup(whole), setup(parts);
+    whole.write("system/controlDict.yaml", controlDict(deltaT, T, writeInterval));
+    parts.write("system/controlDict.yaml", controlDict(deltaT, split, writeInterval));
+    REQUIRE(runIn(whole.dir(), "log.whole") == 0);
+    REQUIRE(runIn(parts.dir(), "log.first") == 0);
+    // The state at the split, with the models' files beside it.
+    const auto splitFolder = mag::latestTimeFolder(parts.dir());
+    REQUIRE(splitFolder.has_value());
+    CHECK(mag::Dict::fromFile(*splitFolder / "bodies.yaml").get<double>("time") == Approx(split).margin(1e-12));
+    for (const std::string& f : stateFiles) CHECK(std::filesystem::exists(*splitFolder / f));
+    parts.write("system/controlDict.yaml", controlDict(deltaT, T, writeInterval, "startFrom: latestTime\n"));
+    REQUIRE(runIn(parts.dir(), "log.restart") == 0);
+    CHECK_THAT(slurp(parts.path("log.restart")), Catch::Matchers::Contains("Restarting from"));
+
+    const auto a = mag::latestTimeFolder(whole.dir()), b = mag::latestTimeFolder(parts.dir());
+    REQUIRE(a.has_value());
+    REQUIRE(b.has_value());
+    CHECK(a->filename() == b->filename());
+    CHECK(slurp(*a / "bodies.yaml") == slurp(*b / "bodies.yaml"));
+    for (const std::string& f : stateFiles) CHECK(slurp(*a / f) == slurp(*b / f));
+    for (const char* csv : {"bodies.csv", "energy.csv", "induction.csv"}) {
+        INFO(csv);
+        const auto file = std::string("postProcessing/") + csv;
+        REQUIRE(std::filesystem::exists(whole.path(file)) == std::filesystem::exists(parts.path(file)));
+        if (!std::filesystem::exists(whole.path(file))) continue;
+        const std::vector<std::string> x = rowsExcept(whole.path(file), split), y = rowsExcept(parts.path(file), split);
+        CHECK(x.size() > 3);
+        CHECK(x == y);
+    }
+}
+
+} // namespace
+
+TEST_CASE("restart is exact: soft iron with LLG", "[restart]") {
+    // tutorials/softIron, smaller: a steel block pulled onto a fixed magnet.
+    auto setup = [](magtest::TempCase& c) {
+        c.write("system/magSchemes.yaml", "field: {type: MBM, quadrature: {type: regular, n: 1}, overlap: amperian}\n"
+                                          "induction: {type: LLG, tolerance: 1e-6, maxIterations: 200}\n");
+        c.write("constant/materials.yaml", "N42: {model: permanent, Br: 1.3, density: 7500}\n"
+                                           "steel: {model: soft, k: 5, Js: 2.0, density: 7850}\n");
+        c.write("constant/bodies.yaml",
+                "bodies:\n"
+                "  - {name: magnet, geometry: {box: {size: [0.01, 0.01, 0.01]}}, material: N42,\n"
+                "     magnetization: [1, 0, 0], position: [0, 0, 0.005], motion: fixed}\n"
+                "  - {name: block, geometry: {box: {size: [0.006, 0.004, 0.003]}}, material: steel,\n"
+                "     position: [0.01, 0.001, 0.0015], orientation: {axis: [0, 0, 1], angle: 20}}\n");
+        c.write("constant/rigidBody.yaml", "type: ODE\ngravity: [0, 0, -9.81]\nground: {height: 0}\n"
+                                           "contact: {friction: 0.4, restitution: 0.1}\nmaxTravel: 0.01\n");
+    };
+    checkExactRestart(setup, 1e-4, 0.02, 0.0137, 0.002, {"induction.yaml", "rigidBody.yaml"});
+}
+
+TEST_CASE("restart is exact: free backend, verlet", "[restart]") {
+    // A tilted, spinning cube falling onto a fixed one (no contacts: through it).
+    auto setup = [](magtest::TempCase& c) {
+        c.twoCubes(0.004, "{type: MBM, quadrature: {type: gauss, n: 3}}");
+        c.write("constant/bodies.yaml",
+                "bodies:\n"
+                "  - {name: bottom, geometry: {box: {size: [0.01, 0.01, 0.01]}}, material: N,\n"
+                "     magnetization: [0, 0, 1], position: [0, 0, 0], motion: fixed}\n"
+                "  - {name: top, geometry: {box: {size: [0.01, 0.008, 0.006]}}, material: N,\n"
+                "     magnetization: [0, 0, 1], position: [0.002, 0, 0.014],\n"
+                "     orientation: {axis: [1, 1, 0], angle: 25}, angularVelocity: [3, -2, 5]}\n");
+        c.write("constant/rigidBody.yaml", "type: free\ngravity: [0, 0, -9.81]\nintegrator: verlet\nsubSteps: 2\n");
+    };
+    checkExactRestart(setup, 1e-3, 0.04, 0.023, 0.005, {"rigidBody.yaml"});
+}
+
+TEST_CASE("restart is exact: ODE, tutorials/dropMagnet", "[restart]") {
+    // The tutorial as it is (0.3 s), continued from 0.1437 s, after the landing.
+    auto setup = [](magtest::TempCase& c) {
+        const std::filesystem::path tutorial = std::filesystem::path(MAG_SOURCE_DIR) / "tutorials/dropMagnet";
+        for (const char* f : {"system/magSchemes.yaml", "constant/materials.yaml", "constant/bodies.yaml",
+                              "constant/rigidBody.yaml"})
+            c.write(f, slurp(tutorial / f));
+    };
+    checkExactRestart(setup, 5e-5, 0.3, 0.1437, 0.005, {"rigidBody.yaml"});
+}
+
+TEST_CASE("restart is exact: ODE, a heap of cubes with quickStep", "[restart]") {
+    // Five cubes that attract each other and fall on the ground: contacts
+    // between dynamic bodies (the space order changes as they move) and
+    // quickStep's random constraint order.
+    auto setup = [](magtest::TempCase& c) {
+        c.write("system/magSchemes.yaml", "field: {type: MBM, quadrature: {type: gauss, n: 2}, overlap: amperian}\n");
+        c.write("constant/materials.yaml", "N: {model: permanent, Br: 0.3, density: 7500}\n");
+        std::string bodies = "bodies:\n";
+        const char* poses[] = {"[0, 0, 0.003]", "[0.0065, 0.001, 0.004]", "[-0.001, 0.0068, 0.006]",
+                               "[0.006, 0.007, 0.009]", "[0.003, 0.003, 0.014]"};
+        const char* dirs[] = {"[0, 0, 1]", "[0, 0, -1]", "[1, 0, 0]", "[0, 1, 0]", "[0, 0, 1]"};
+        for (int i = 0; i < 5; ++i)
+            bodies += "  - {name: c" + std::to_string(i) +
+                      ", geometry: {box: {size: [0.006, 0.006, 0.006]}}, material: N, magnetization: " + dirs[i] +
+                      ", position: " + poses[i] + ", orientation: {axis: [1, 2, 3], angle: " +
+                      std::to_string(10 * i) + "}}\n";
+        c.write("constant/bodies.yaml", bodies);
+        c.write("constant/rigidBody.yaml", "type: ODE\ngravity: [0, 0, -9.81]\nground: {height: 0}\n"
+                                           "stepper: quickStep\niterations: 20\nseed: 7\n");
+    };
+    checkExactRestart(setup, 2e-4, 0.06, 0.0374, 0.005, {"rigidBody.yaml"});
+}
+
+TEST_CASE("bodies.yaml reads back exactly what was written", "[restart]") {
+    magtest::TempCase c;
+    std::mt19937_64 rng(42);
+    std::uniform_real_distribution<double> u(-1, 1);
+    auto shape = mag::makeShape(mag::makeBox(Vec3(0.01, 0.01, 0.01)), mag::ShapeKind{});
+    std::vector<mag::Body> bodies(20);
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        mag::Body& b = bodies[i];
+        b.name = "b";
+        b.name += std::to_string(i);
+        b.shape = shape;
+        b.material.density = 7500;
+        b.position = Vec3(u(rng), u(rng), u(rng)) * std::pow(10.0, -int(i % 7));
+        b.orientation = mag::Quat(u(rng), u(rng), u(rng), u(rng)).normalized();
+        b.velocity = Vec3(u(rng), u(rng), u(rng)) / 3;
+        b.angularVelocity = Vec3(u(rng), u(rng), u(rng)) * 1e3 / 7;
+        b.magnetizationBody = Vec3(u(rng), u(rng), u(rng)) * 1e6 / 3;
+    }
+    const double time = 0.1 + 0.2;  // 0.30000000000000004, written in folder "0.3"
+    {
+        mag::ResultsWriter writer(c.dir(), std::nullopt);
+        writer.write(time, 1234567, bodies, std::vector<mag::Wrench>(bodies.size()), mag::Energies{});
+    }
+    std::vector<mag::Body> read = bodies;
+    for (mag::Body& b : read) b.position = b.velocity = b.angularVelocity = b.magnetizationBody = Vec3::Zero();
+    const mag::RestartState s = mag::readState(c.path("0.3/bodies.yaml"), read);
+    CHECK(s.time == time);
+    CHECK(s.step == 1234567);
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        INFO(bodies[i].name);
+        CHECK(read[i].position == bodies[i].position);
+        CHECK(read[i].orientation.coeffs() == bodies[i].orientation.coeffs());
+        CHECK(read[i].velocity == bodies[i].velocity);
+        CHECK(read[i].angularVelocity == bodies[i].angularVelocity);
+        CHECK(read[i].magnetizationBody == bodies[i].magnetizationBody);
+    }
+}
