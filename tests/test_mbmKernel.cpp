@@ -20,13 +20,13 @@
 
 #include "KernelPath.hpp"
 #include "MBMReference.hpp"
+#include "PartShapes.hpp"
 #include "PolyhedronBlocks.hpp"
 #include "PolyhedronField.hpp"
 #include "PolyhedronTables.hpp"
 
 #include <magFoam/Error.hpp>
 #include <magFoam/MeshPrimitives.hpp>
-#include <magFoam/MeshShapes.hpp>
 
 #include <algorithm>
 #include <cmath>

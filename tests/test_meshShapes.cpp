@@ -1,15 +1,17 @@
-// Shape generators (MeshShapes) and the magMakeGeometry front end.
+// Scene part generators (PartShapes) and the magMakeGeometry front end (GeometryDict).
 // References are independent of the code under test: closed-form volumes of the
 // polygonal solids and of the smooth ones they converge to (observed order 2),
 // the paperclip's analytic wire length, brute-force distances between path
 // segments, edge-triangle crossings and winding numbers for (self-)intersection.
 #include <catch2/catch.hpp>
 
+#include "GeometryDict.hpp"
+#include "PartShapes.hpp"
+
 #include <magFoam/Error.hpp>
 #include <magFoam/MassProperties.hpp>
 #include <magFoam/MeshIO.hpp>
 #include <magFoam/MeshPrimitives.hpp>
-#include <magFoam/MeshShapes.hpp>
 #include <magFoam/MeshTopology.hpp>
 
 #include <algorithm>

@@ -51,10 +51,11 @@
 //
 // Parts are centred on their bounding box (tube: as given by its path); bodies
 // are placed by their centre of mass in bodies.yaml anyway.
+#include "GeometryDict.hpp"
+
 #include <magFoam/ArgList.hpp>
 #include <magFoam/Log.hpp>
 #include <magFoam/MassProperties.hpp>
-#include <magFoam/MeshShapes.hpp>
 
 using namespace mag;
 

@@ -1,6 +1,9 @@
 // Everyday steel parts and magnets as closed triangle meshes, for the paper's
 // scenes (Fig. 1 binder clips on a neodymium magnet, Fig. 8 paperclips on a bar
-// magnet, Fig. 9 metal junk under a crane magnet) and for magMakeGeometry.
+// magnet, Fig. 9 metal junk under a crane magnet). Scene parts, not framework:
+// they live in the static library magPartShapes beside magMakeGeometry (their
+// dictionary front end, GeometryDict.hpp); general primitives (box, sphere,
+// cylinder) stay in core's MeshPrimitives.hpp.
 //
 // Every generator returns a closed, manifold, consistently outward oriented
 // mesh without degenerate triangles (requireUsable passes), in SI metres,
@@ -29,10 +32,8 @@
 // have exactly the volume of the polygonal cross-section times the length.
 #pragma once
 
-#include <magFoam/Dictionary.hpp>
 #include <magFoam/SurfaceMesh.hpp>
 
-#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -188,32 +189,5 @@ SurfaceMesh makeBarMagnet(const Vec3& size = Vec3(0.05, 0.01, 0.01));
 // Volume exactly (n/2) sin(2 pi/n) (R^2 h - (R - w)^2 d).
 SurfaceMesh makeCraneDisc(double radius = 0.15, double height = 0.05, double rimWidth = 0.015,
                           double rimDepth = 0.01, int segments = 64);
-
-// ---------------------------------------------------------------------------
-// Dictionary front end (magMakeGeometry)
-// ---------------------------------------------------------------------------
-
-// The 'type:' words of geometryDict.yaml, sorted.
-std::vector<std::string> shapeTypes();
-
-// One mesh that magMakeGeometry writes as constant/geometry/<name>.stl.
-struct NamedMesh {
-    std::string name;
-    std::string type;
-    SurfaceMesh mesh;
-};
-
-// The meshes of one `parts:` entry ({name, type, keys...}; see magMakeGeometry
-// for the keys). Unknown keys and types are InputErrors citing file:line;
-// generator errors are re-thrown with the entry's position. Most types give one
-// mesh named <name>; binderClip with split: true gives <name>_sheet,
-// <name>_handle1, <name>_handle2.
-std::vector<NamedMesh> makeNamedShapes(const Dict& entry);
-
-// Reads <caseDir>/system/geometryDict.yaml (parts: [...]), builds every part,
-// checks it with requireUsable and writes binary STL files
-// <caseDir>/constant/geometry/<name>.stl. Names must be unique and made of
-// letters, digits, '_', '-', '.'. Returns the meshes written, in order.
-std::vector<NamedMesh> makeCaseGeometry(const std::filesystem::path& caseDir);
 
 } // namespace mag
