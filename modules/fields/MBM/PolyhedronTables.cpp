@@ -24,7 +24,48 @@ std::uint64_t edgeKey(int a, int b) {
     throw std::invalid_argument("PolyhedronTables: " + what);
 }
 
+// Unit normal and twice the area of each triangle; a zero-area triangle has no
+// normal, so it is an error. File-local, so that it is inlined into the
+// constructor: this file is compiled with FMA contraction, and an out-of-line
+// copy fuses the cross products differently (other last bits in the tables).
+void measureTriangles(const std::vector<Vec3>& vertices, const std::vector<std::array<int, 3>>& tris,
+                      std::vector<Vec3>& triNormal, std::vector<double>& triTwiceArea) {
+    const int nT = static_cast<int>(tris.size());
+    triNormal.resize(static_cast<std::size_t>(nT));
+    triTwiceArea.resize(static_cast<std::size_t>(nT));
+    for (int t = 0; t < nT; ++t) {
+        const auto& v = tris[static_cast<std::size_t>(t)];
+        const Vec3 e1 = vertices[v[1]] - vertices[v[0]];
+        const Vec3 e2 = vertices[v[2]] - vertices[v[0]];
+        const Vec3 c = e1.cross(e2);
+        const double twiceArea = c.norm();
+        const double longest2 =
+            std::max({e1.squaredNorm(), e2.squaredNorm(), (e2 - e1).squaredNorm()});
+        // sine of the largest angle below 1e-14: numerically collinear
+        if (!(twiceArea > 1e-14 * longest2)) {
+            std::ostringstream s;
+            s << "triangle " << t << " is degenerate (zero area)";
+            fail(s.str());
+        }
+        triNormal[static_cast<std::size_t>(t)] = c / twiceArea;
+        triTwiceArea[static_cast<std::size_t>(t)] = twiceArea;
+    }
+}
+
 } // namespace
+
+// Per-triangle data that one step produces and later ones read; dropped once
+// the tables are built.
+struct PolyhedronTables::Build {
+    std::vector<std::array<int, 3>> tris; // triangles in compacted vertex indices
+    std::vector<Vec3> triNormal;          // unit normal per triangle
+    std::vector<double> triTwiceArea;     // |(r1 - r0) x (r2 - r0)| per triangle
+    std::vector<int> neighbour;           // 3 t + k -> triangle across edge k of t
+    std::vector<int> triFace;             // triangle -> planar face
+    std::vector<int> order;               // triangles face by face (face-major)
+    std::vector<int> faceStart;           // face f holds order[faceStart[f], faceStart[f + 1])
+    int nT() const { return static_cast<int>(tris.size()); }
+};
 
 PolyhedronTables::PolyhedronTables(const std::vector<Vec3>& vertices,
                                    const std::vector<std::array<int, 3>>& triangles,
@@ -32,9 +73,25 @@ PolyhedronTables::PolyhedronTables(const std::vector<Vec3>& vertices,
     static std::atomic<std::uint64_t> nextId{1};
     id_ = nextId.fetch_add(1, std::memory_order_relaxed);
     if (triangles.empty()) fail("the mesh has no triangles");
-    const int nIn = static_cast<int>(vertices.size());
 
-    // Check indices and compact the vertices (only used ones are kept, in input order).
+    // The order of the checks fixes which error an unusable mesh reports.
+    Build b;
+    compactVertices(vertices, triangles, b);
+    measureTriangles(vertices_, b.tris, b.triNormal, b.triTwiceArea);
+    matchNeighbours(b);
+    volumeAndCentroid(b);
+    mergeCoplanar(b, coplanarTolerance);
+    buildFaces(b);
+    buildEdges(b);
+    buildLoops();
+    bounds();
+}
+
+// Checks indices and compacts the vertices: only used ones are kept, in input
+// order, so an unused (even non-finite) vertex cannot disturb the tables.
+void PolyhedronTables::compactVertices(const std::vector<Vec3>& vertices,
+                                       const std::vector<std::array<int, 3>>& triangles, Build& b) {
+    const int nIn = static_cast<int>(vertices.size());
     std::vector<int> compact(static_cast<std::size_t>(nIn), -1);
     for (std::size_t t = 0; t < triangles.size(); ++t) {
         const auto& tri = triangles[t];
@@ -70,134 +127,124 @@ PolyhedronTables::PolyhedronTables(const std::vector<Vec3>& vertices,
         }
     }
     const int nT = static_cast<int>(triangles.size());
-    std::vector<std::array<int, 3>> tris(static_cast<std::size_t>(nT));
+    b.tris.resize(static_cast<std::size_t>(nT));
     for (int t = 0; t < nT; ++t)
         for (int k = 0; k < 3; ++k)
-            tris[static_cast<std::size_t>(t)][k] =
+            b.tris[static_cast<std::size_t>(t)][k] =
                 compact[static_cast<std::size_t>(triangles[static_cast<std::size_t>(t)][k])];
+}
 
-    // Triangle normals and areas; a zero-area triangle has no normal.
-    std::vector<Vec3> triNormal(static_cast<std::size_t>(nT));
-    std::vector<double> triTwiceArea(static_cast<std::size_t>(nT));
-    for (int t = 0; t < nT; ++t) {
-        const auto& v = tris[static_cast<std::size_t>(t)];
-        const Vec3 e1 = vertices_[v[1]] - vertices_[v[0]];
-        const Vec3 e2 = vertices_[v[2]] - vertices_[v[0]];
-        const Vec3 c = e1.cross(e2);
-        const double twiceArea = c.norm();
-        const double longest2 =
-            std::max({e1.squaredNorm(), e2.squaredNorm(), (e2 - e1).squaredNorm()});
-        // sine of the largest angle below 1e-14: numerically collinear
-        if (!(twiceArea > 1e-14 * longest2)) {
-            std::ostringstream s;
-            s << "triangle " << t << " is degenerate (zero area)";
-            fail(s.str());
-        }
-        triNormal[static_cast<std::size_t>(t)] = c / twiceArea;
-        triTwiceArea[static_cast<std::size_t>(t)] = twiceArea;
-    }
-
-    // Directed half-edges: each must appear once, and its reverse exactly once.
+// Directed half-edges: each must appear once and its reverse exactly once
+// (closed, manifold, consistently oriented); the reverse names the neighbour.
+void PolyhedronTables::matchNeighbours(Build& b) const {
+    const int nT = b.nT();
+    const auto& tris = b.tris;
     std::unordered_map<std::uint64_t, int> halfEdge; // key -> 3 t + k
     halfEdge.reserve(static_cast<std::size_t>(3 * nT) * 2);
     auto inputIndex = [&](int v) { return inputVertex_[static_cast<std::size_t>(v)]; };
     for (int t = 0; t < nT; ++t)
         for (int k = 0; k < 3; ++k) {
             const int a = tris[static_cast<std::size_t>(t)][k];
-            const int b = tris[static_cast<std::size_t>(t)][(k + 1) % 3];
-            const auto [it, inserted] = halfEdge.emplace(edgeKey(a, b), 3 * t + k);
+            const int c = tris[static_cast<std::size_t>(t)][(k + 1) % 3];
+            const auto [it, inserted] = halfEdge.emplace(edgeKey(a, c), 3 * t + k);
             if (!inserted) {
                 std::ostringstream s;
-                s << "edge (" << inputIndex(a) << ", " << inputIndex(b)
+                s << "edge (" << inputIndex(a) << ", " << inputIndex(c)
                   << ") is used in the same direction by triangles " << it->second / 3
                   << " and " << t
                   << ": the mesh is non-manifold or inconsistently oriented";
                 fail(s.str());
             }
         }
-    std::vector<int> neighbour(static_cast<std::size_t>(3 * nT), -1); // 3 t + k -> triangle
+    b.neighbour.assign(static_cast<std::size_t>(3 * nT), -1);
     for (int t = 0; t < nT; ++t)
         for (int k = 0; k < 3; ++k) {
             const int a = tris[static_cast<std::size_t>(t)][k];
-            const int b = tris[static_cast<std::size_t>(t)][(k + 1) % 3];
-            const auto it = halfEdge.find(edgeKey(b, a));
+            const int c = tris[static_cast<std::size_t>(t)][(k + 1) % 3];
+            const auto it = halfEdge.find(edgeKey(c, a));
             if (it == halfEdge.end()) {
                 std::ostringstream s;
-                s << "edge (" << inputIndex(a) << ", " << inputIndex(b) << ") of triangle " << t
+                s << "edge (" << inputIndex(a) << ", " << inputIndex(c) << ") of triangle " << t
                   << " has no opposite triangle: the mesh is open (or the neighbour is "
                      "oriented the same way)";
                 fail(s.str());
             }
-            neighbour[static_cast<std::size_t>(3 * t + k)] = it->second / 3;
+            b.neighbour[static_cast<std::size_t>(3 * t + k)] = it->second / 3;
         }
+}
 
-    // Volume and centroid (divergence theorem; origin at a vertex for precision).
-    {
-        const Vec3 o = vertices_[0];
-        double sixV = 0.0;
-        Vec3 m = Vec3::Zero();
-        for (const auto& v : tris) {
-            const Vec3 a = vertices_[v[0]] - o, b = vertices_[v[1]] - o, c = vertices_[v[2]] - o;
-            const double d = a.dot(b.cross(c));
-            sixV += d;
-            m += d * (a + b + c);
-        }
-        volume_ = sixV / 6.0;
-        if (!(volume_ > 0.0)) {
-            std::ostringstream s;
-            s << "the enclosed volume is " << volume_
-              << " m^3 (not positive): the triangles are oriented inwards";
-            fail(s.str());
-        }
-        centroid_ = o + m / (4.0 * sixV);
+// Volume and centroid by the divergence theorem, origin at a vertex for
+// precision; a non-positive volume means the triangles face inwards.
+void PolyhedronTables::volumeAndCentroid(const Build& b) {
+    const Vec3 o = vertices_[0];
+    double sixV = 0.0;
+    Vec3 m = Vec3::Zero();
+    for (const auto& v : b.tris) {
+        const Vec3 a = vertices_[v[0]] - o, bb = vertices_[v[1]] - o, c = vertices_[v[2]] - o;
+        const double d = a.dot(bb.cross(c));
+        sixV += d;
+        m += d * (a + bb + c);
     }
+    volume_ = sixV / 6.0;
+    if (!(volume_ > 0.0)) {
+        std::ostringstream s;
+        s << "the enclosed volume is " << volume_
+          << " m^3 (not positive): the triangles are oriented inwards";
+        fail(s.str());
+    }
+    centroid_ = o + m / (4.0 * sixV);
+}
 
-    // Merge coplanar neighbours into faces by region growing: a triangle joins when its
-    // normal is within the tolerance of the SEED's normal (no drift along curved parts).
-    std::vector<int> triFace(static_cast<std::size_t>(nT), -1);
-    std::vector<int> order;
-    order.reserve(static_cast<std::size_t>(nT));
-    std::vector<int> faceStart;
+// Merges coplanar neighbours into faces by region growing: a triangle joins when
+// its normal is within the tolerance of the SEED's normal (no drift along curved
+// parts). The edges inside a face cancel exactly and are never stored.
+void PolyhedronTables::mergeCoplanar(Build& b, double coplanarTolerance) {
+    const int nT = b.nT();
+    b.triFace.assign(static_cast<std::size_t>(nT), -1);
+    b.order.reserve(static_cast<std::size_t>(nT));
     std::vector<int> stack;
     for (int seed = 0; seed < nT; ++seed) {
-        if (triFace[static_cast<std::size_t>(seed)] >= 0) continue;
-        const int f = static_cast<int>(faceStart.size());
-        faceStart.push_back(static_cast<int>(order.size()));
-        const Vec3 nSeed = triNormal[static_cast<std::size_t>(seed)];
-        triFace[static_cast<std::size_t>(seed)] = f;
+        if (b.triFace[static_cast<std::size_t>(seed)] >= 0) continue;
+        const int f = static_cast<int>(b.faceStart.size());
+        b.faceStart.push_back(static_cast<int>(b.order.size()));
+        const Vec3 nSeed = b.triNormal[static_cast<std::size_t>(seed)];
+        b.triFace[static_cast<std::size_t>(seed)] = f;
         stack.assign(1, seed);
         while (!stack.empty()) {
             const int t = stack.back();
             stack.pop_back();
-            order.push_back(t);
+            b.order.push_back(t);
             for (int k = 0; k < 3; ++k) {
-                const int u = neighbour[static_cast<std::size_t>(3 * t + k)];
-                if (triFace[static_cast<std::size_t>(u)] >= 0) continue;
-                const Vec3& nu = triNormal[static_cast<std::size_t>(u)];
+                const int u = b.neighbour[static_cast<std::size_t>(3 * t + k)];
+                if (b.triFace[static_cast<std::size_t>(u)] >= 0) continue;
+                const Vec3& nu = b.triNormal[static_cast<std::size_t>(u)];
                 if (nu.dot(nSeed) > 0.0 && nu.cross(nSeed).norm() <= coplanarTolerance) {
-                    triFace[static_cast<std::size_t>(u)] = f;
+                    b.triFace[static_cast<std::size_t>(u)] = f;
                     stack.push_back(u);
                 }
             }
         }
     }
-    const int nF = static_cast<int>(faceStart.size());
-    faceStart.push_back(nT);
+    b.faceStart.push_back(nT);
+}
 
-    // Faces: normal (area-weighted), area, centroid, offset; triangles face-major.
+// Faces: normal (area-weighted), area, centroid, plane offset; the triangles
+// stored face-major so a face's solid angle sums one contiguous range.
+void PolyhedronTables::buildFaces(const Build& b) {
+    const int nF = static_cast<int>(b.faceStart.size()) - 1;
     faces_.resize(static_cast<std::size_t>(nF));
-    triangles_.reserve(static_cast<std::size_t>(nT));
+    triangles_.reserve(b.tris.size());
     for (int f = 0; f < nF; ++f) {
         PolyFace& face = faces_[static_cast<std::size_t>(f)];
-        face.triBegin = faceStart[static_cast<std::size_t>(f)];
-        face.triEnd = faceStart[static_cast<std::size_t>(f + 1)];
+        face.triBegin = b.faceStart[static_cast<std::size_t>(f)];
+        face.triEnd = b.faceStart[static_cast<std::size_t>(f + 1)];
         Vec3 n = Vec3::Zero(), c = Vec3::Zero();
         double twiceArea = 0.0;
         for (int i = face.triBegin; i < face.triEnd; ++i) {
-            const int t = order[static_cast<std::size_t>(i)];
-            const auto& v = tris[static_cast<std::size_t>(t)];
-            const double w = triTwiceArea[static_cast<std::size_t>(t)];
-            n += w * triNormal[static_cast<std::size_t>(t)];
+            const int t = b.order[static_cast<std::size_t>(i)];
+            const auto& v = b.tris[static_cast<std::size_t>(t)];
+            const double w = b.triTwiceArea[static_cast<std::size_t>(t)];
+            n += w * b.triNormal[static_cast<std::size_t>(t)];
             c += w * (vertices_[v[0]] + vertices_[v[1]] + vertices_[v[2]]) / 3.0;
             twiceArea += w;
             triangles_.push_back({v, w, f});
@@ -207,32 +254,37 @@ PolyhedronTables::PolyhedronTables(const std::vector<Vec3>& vertices,
         face.centroid = c / twiceArea;
         face.offset = face.normal.dot(vertices_[triangles_[static_cast<std::size_t>(face.triBegin)].v[0]]);
     }
+}
 
-    // Edges between different faces (edge-major), and each face's boundary edges.
+// Edges between different faces, each stored once with both faces (edge-major:
+// omega_e is then computed once per edge and point), and each face's boundary
+// edges with their inward directions.
+void PolyhedronTables::buildEdges(const Build& b) {
+    const int nF = static_cast<int>(faces_.size());
     std::unordered_map<std::uint64_t, int> edgeIndex; // undirected key -> edge
-    edgeIndex.reserve(static_cast<std::size_t>(3 * nT));
+    edgeIndex.reserve(b.tris.size() * 3);
     for (int f = 0; f < nF; ++f) {
         PolyFace& face = faces_[static_cast<std::size_t>(f)];
         face.edgeBegin = static_cast<int>(faceEdges_.size());
         for (int i = face.triBegin; i < face.triEnd; ++i) {
-            const int t = order[static_cast<std::size_t>(i)];
+            const int t = b.order[static_cast<std::size_t>(i)];
             for (int k = 0; k < 3; ++k) {
-                const int g = triFace[static_cast<std::size_t>(
-                    neighbour[static_cast<std::size_t>(3 * t + k)])];
+                const int g = b.triFace[static_cast<std::size_t>(
+                    b.neighbour[static_cast<std::size_t>(3 * t + k)])];
                 if (g == f) continue; // interior edge of a planar face: cancels exactly
-                const int a = tris[static_cast<std::size_t>(t)][k];
-                const int b = tris[static_cast<std::size_t>(t)][(k + 1) % 3];
-                const auto key = edgeKey(std::min(a, b), std::max(a, b));
+                const int a = b.tris[static_cast<std::size_t>(t)][k];
+                const int c = b.tris[static_cast<std::size_t>(t)][(k + 1) % 3];
+                const auto key = edgeKey(std::min(a, c), std::max(a, c));
                 const auto it = edgeIndex.find(key);
                 FaceEdge fe;
                 if (it == edgeIndex.end()) {
-                    // first seen from this face: a -> b is CCW about this face
+                    // first seen from this face: a -> c is CCW about this face
                     PolyEdge e;
                     e.v0 = a;
-                    e.v1 = b;
+                    e.v1 = c;
                     e.face0 = f;
                     e.face1 = g;
-                    e.delta = vertices_[b] - vertices_[a];
+                    e.delta = vertices_[c] - vertices_[a];
                     e.length = e.delta.norm();
                     e.inward0 = face.normal.cross(e.delta / e.length);
                     fe.edge = static_cast<int>(edges_.size());
@@ -241,7 +293,7 @@ PolyhedronTables::PolyhedronTables(const std::vector<Vec3>& vertices,
                     edgeIndex.emplace(key, fe.edge);
                     edges_.push_back(e);
                 } else {
-                    // seen before from the other face, which traversed it b -> a
+                    // seen before from the other face, which traversed it c -> a
                     PolyEdge& e = edges_[static_cast<std::size_t>(it->second)];
                     e.inward1 = face.normal.cross(-e.delta / e.length);
                     fe.edge = it->second;
@@ -253,8 +305,11 @@ PolyhedronTables::PolyhedronTables(const std::vector<Vec3>& vertices,
         }
         face.edgeEnd = static_cast<int>(faceEdges_.size());
     }
+}
 
-    // Boundary loops of each face: chain its directed boundary edges.
+// Boundary loops of each face (a face may be holed or have several loops):
+// chains its directed boundary edges into vertex cycles.
+void PolyhedronTables::buildLoops() {
     for (auto& face : faces_) {
         std::vector<std::pair<int, int>> directed; // (from, to)
         for (int i = face.edgeBegin; i < face.edgeEnd; ++i) {
@@ -282,7 +337,10 @@ PolyhedronTables::PolyhedronTables(const std::vector<Vec3>& vertices,
             face.loops.push_back(std::move(loop));
         }
     }
+}
 
+// Size scales of the mesh: farthest vertex from the centroid, longest edge.
+void PolyhedronTables::bounds() {
     for (const auto& v : vertices_)
         boundingRadius_ = std::max(boundingRadius_, (v - centroid_).norm());
     for (const auto& e : edges_) maxEdgeLength_ = std::max(maxEdgeLength_, e.length);

@@ -106,6 +106,20 @@ public:
     std::uint64_t id() const { return id_; }
 
 private:
+    // The constructor's steps, in order (the triangle normals and areas, after
+    // compactVertices, are measured by a file-local function); each checks what
+    // it needs and throws std::invalid_argument naming the offending element.
+    struct Build; // per-triangle scratch passed between the steps (PolyhedronTables.cpp)
+    void compactVertices(const std::vector<Vec3>& vertices,
+                         const std::vector<std::array<int, 3>>& triangles, Build& b);
+    void matchNeighbours(Build& b) const;
+    void volumeAndCentroid(const Build& b);
+    static void mergeCoplanar(Build& b, double coplanarTolerance);
+    void buildFaces(const Build& b);
+    void buildEdges(const Build& b);
+    void buildLoops();
+    void bounds();
+
     std::vector<Vec3> vertices_;
     std::vector<int> inputVertex_;
     std::vector<PolyEdge> edges_;
