@@ -1,5 +1,6 @@
 #include "magFoam/Plugins.hpp"
 
+#include "magFoam/Dictionary.hpp"
 #include "magFoam/Error.hpp"
 #include "magFoam/FieldEvaluator.hpp"
 #include "magFoam/InductionModel.hpp"
@@ -8,11 +9,13 @@
 
 #include <dlfcn.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <map>
 #include <mutex>
 #include <set>
 #include <sstream>
+#include <string_view>
 
 namespace mag {
 
@@ -63,9 +66,10 @@ RigidBodyBackend::Registry& RigidBodyBackend::registry() {
 }
 
 template <class Base>
-std::unique_ptr<Base> selectFromRegistry(Registry<Base>& registry, const Dict& dict, const std::string& what) {
+std::unique_ptr<Base> selectFromRegistry(Registry<Base>& registry, const Dict& dict, const std::string& what,
+                                         const std::string& manifestKey) {
     const std::string type = dict.get<std::string>("type");
-    if (!registry.has(type)) plugins::tryLoadForType("mag" + type);
+    if (!registry.has(type) && !plugins::loadForType(manifestKey, type)) plugins::tryLoadForType("mag" + type);
     const auto* entry = registry.find(type);
     if (!entry) {
         dict.fail("type", "unknown " + what + " type '" + type + "'; valid types: " + joinNames(registry.names()) +
@@ -78,21 +82,21 @@ std::unique_ptr<Base> selectFromRegistry(Registry<Base>& registry, const Dict& d
 
 std::unique_ptr<FieldEvaluator> FieldEvaluator::New(const Dict& dict) {
     plugins::loadStandardModules();
-    return selectFromRegistry(registry(), dict, "field evaluator");
+    return selectFromRegistry(registry(), dict, "field evaluator", "field");
 }
 std::unique_ptr<InductionModel> InductionModel::New(const Dict& dict) {
     plugins::loadStandardModules();
-    return selectFromRegistry(registry(), dict, "induction model");
+    return selectFromRegistry(registry(), dict, "induction model", "induction");
 }
 std::unique_ptr<RigidBodyBackend> RigidBodyBackend::New(const Dict& dict) {
     plugins::loadStandardModules();
-    return selectFromRegistry(registry(), dict, "rigid-body backend");
+    return selectFromRegistry(registry(), dict, "rigid-body backend", "rigidBody");
 }
 
 namespace plugins {
 
-const std::vector<std::string>& standardModules() {
-    static const std::vector<std::string> names = {"magMBM", "magEDM", "magHybrid", "magLLG", "magODE", "magFreeBody"};
+const std::vector<std::string>& registryNames() {
+    static const std::vector<std::string> names = {"field", "induction", "rigidBody"};
     return names;
 }
 
@@ -123,6 +127,77 @@ std::filesystem::path resolve(const std::string& nameOrPath, const std::filesyst
     return {};
 }
 
+constexpr std::string_view kManifestSuffix = ".magPlugins.yaml";
+
+// The entries of one manifest file, read once per process.
+const std::vector<ManifestEntry>& readManifest(const std::filesystem::path& file) {
+    static std::map<std::string, std::vector<ManifestEntry>> cache;
+    const std::string key = std::filesystem::weakly_canonical(file).string();
+    if (auto it = cache.find(key); it != cache.end()) return it->second;
+    const Dict d = Dict::fromFile(file);
+    std::vector<ManifestEntry> entries;
+    for (const std::string& lib : d.keys()) {
+        if (lib.find('/') != std::string::npos || !lib.ends_with(".so"))
+            d.fail(lib, "expected a library file name (libmagFoo.so) mapped to its types, e.g. {field: [Foo]}");
+        const Dict types = d.subOrEmpty(lib);
+        ManifestEntry e{file.parent_path() / lib, file, {}};
+        for (const std::string& registry : types.keys()) {
+            if (std::find(registryNames().begin(), registryNames().end(), registry) == registryNames().end())
+                types.fail(registry, "unknown registry '" + registry + "'; valid: " + joinNames(registryNames()));
+            auto names = types.get<std::vector<std::string>>(registry);
+            std::sort(names.begin(), names.end());
+            if (!names.empty()) e.types[registry] = std::move(names);
+        }
+        entries.push_back(std::move(e));
+    }
+    return cache[key] = std::move(entries);
+}
+
+// The manifests of one folder, by file name.
+std::vector<std::filesystem::path> manifestsIn(const std::filesystem::path& dir) {
+    std::vector<std::filesystem::path> out;
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(dir, ec))
+        if (entry.path().filename().string().ends_with(kManifestSuffix)) out.push_back(entry.path());
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+// The types each registry holds from library `file` (by file name).
+std::map<std::string, std::vector<std::string>> typesFrom(const std::string& file) {
+    std::map<std::string, std::vector<std::string>> out;
+    auto collect = [&](const std::string& registry, const auto& r) {
+        for (const auto& [name, entry] : r.entries())
+            if (entry.library == file) out[registry].push_back(name); // std::map: sorted
+    };
+    collect("field", FieldEvaluator::registry());
+    collect("induction", InductionModel::registry());
+    collect("rigidBody", RigidBodyBackend::registry());
+    return out;
+}
+
+std::string typesText(const std::map<std::string, std::vector<std::string>>& types) {
+    std::string out;
+    for (const auto& [registry, names] : types)
+        out += (out.empty() ? "" : ", ") + registry + ": [" + joinNames(names) + "]";
+    return "{" + out + "}";
+}
+
+// A library that a manifest of its own folder lists registers exactly the types listed.
+void checkAgainstManifest(const std::filesystem::path& path) {
+    const std::string file = path.filename().string();
+    for (const auto& manifest : manifestsIn(path.parent_path())) {
+        for (const ManifestEntry& e : readManifest(manifest)) {
+            if (e.library.filename() != file) continue;
+            const auto registered = typesFrom(file);
+            if (registered != e.types)
+                throw InputError(path.string() + ": registers " + typesText(registered) + " but " + manifest.string() +
+                                 " lists " + typesText(e.types) +
+                                 " (the TYPES of its mag_add_plugin in CMake must name what it registers)");
+        }
+    }
+}
+
 bool openLibrary(const std::filesystem::path& path) {
     const std::string key = std::filesystem::weakly_canonical(path).string();
     if (openLibraries().count(key)) return false;
@@ -137,6 +212,7 @@ bool openLibrary(const std::filesystem::path& path) {
         spdlog::warn("library {} registered no new model types", path.filename().string());
     else
         spdlog::debug("loaded {}", key);
+    checkAgainstManifest(path);
     return true;
 }
 } // namespace
@@ -160,18 +236,48 @@ bool tryLoadForType(const std::string& libName) {
     return true;
 }
 
+std::vector<ManifestEntry> manifestEntries() {
+    std::vector<ManifestEntry> out;
+    std::set<std::string> seen;
+    for (const auto& dir : searchPath())
+        for (const auto& manifest : manifestsIn(dir))
+            for (const ManifestEntry& e : readManifest(manifest))
+                if (seen.insert(e.library.filename().string()).second) out.push_back(e);
+    return out;
+}
+
+std::vector<std::string> standardModules() {
+    std::vector<std::string> out;
+    for (const ManifestEntry& e : manifestEntries()) out.push_back(e.library.filename().string());
+    return out;
+}
+
 void loadStandardModules() {
     static std::once_flag once;
     std::call_once(once, [] {
-        for (const auto& name : standardModules()) {
-            const auto path = resolve(name, ".");
-            if (path.empty()) {
-                spdlog::debug("standard module {} not found; skipped", name);
+        for (const ManifestEntry& e : manifestEntries()) {
+            if (!std::filesystem::exists(e.library)) {
+                spdlog::debug("standard module {} not found; skipped", e.library.string());
                 continue;
             }
-            openLibrary(path);
+            openLibrary(e.library);
         }
     });
+}
+
+bool loadForType(const std::string& registry, const std::string& type) {
+    for (const ManifestEntry& e : manifestEntries()) {
+        const auto it = e.types.find(registry);
+        if (it == e.types.end() || !std::binary_search(it->second.begin(), it->second.end(), type)) continue;
+        if (!std::filesystem::exists(e.library)) {
+            spdlog::debug("{} lists {} type {} in {}, which is missing", e.manifest.string(), registry, type,
+                          e.library.string());
+            return false;
+        }
+        openLibrary(e.library);
+        return true;
+    }
+    return false;
 }
 
 std::vector<std::string> loaded() {

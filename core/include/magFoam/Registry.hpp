@@ -55,11 +55,13 @@ private:
     std::map<std::string, Entry> entries_;
 };
 
-// Create a model from `dict`: reads `type`, loads lib<mag+type>.so when the
-// name is unknown (OpenFOAM's solverNew habit), and otherwise fails listing
-// the valid types and the loaded libraries. `what` names the extension point
-// in messages ("field evaluator").
+// Create a model from `dict`: reads `type`; when the name is unknown, loads the
+// library that a plugin manifest names for it in registry `manifestKey`
+// (field, induction, rigidBody; Plugins.hpp), else lib<mag+type>.so (OpenFOAM's
+// solverNew habit), and otherwise fails listing the valid types and the loaded
+// libraries. `what` names the extension point in messages ("field evaluator").
 template <class Base>
-std::unique_ptr<Base> selectFromRegistry(Registry<Base>& registry, const Dict& dict, const std::string& what);
+std::unique_ptr<Base> selectFromRegistry(Registry<Base>& registry, const Dict& dict, const std::string& what,
+                                         const std::string& manifestKey);
 
 } // namespace mag
