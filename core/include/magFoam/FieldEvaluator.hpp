@@ -58,6 +58,11 @@ public:
     // The system reports how many pairs it took in bulk (for describe()).
     virtual void countDipolePairs(std::uint64_t) const {}
 
+    // Boundary quadrature samples that interaction() takes on a target of this
+    // shape (cost reports: magBench's table1, table2); 0, the default, where the
+    // model samples no boundary.
+    virtual std::size_t boundarySamples(const Shape&) const { return 0; }
+
     // Registry and selection by `type`.
     using Registry = mag::Registry<FieldEvaluator>;
     static Registry& registry();

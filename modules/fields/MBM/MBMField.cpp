@@ -120,6 +120,11 @@ public:
         return "MBM (quadrature " + ruleName_ + " n=" + std::to_string(n_) + ", overlap " + overlapName_ + ")";
     }
 
+    std::size_t boundarySamples(const Shape& shape) const override {
+        const mbm::PolyhedronTables tables(shape.mesh.vertices, shape.mesh.triangles);
+        return mbm::buildSurfaceQuadrature(tables, rule_, n_).size();
+    }
+
 private:
     struct ShapeData {
         mbm::PolyhedronTables tables;

@@ -23,7 +23,6 @@ std::string substitute(const std::string& text, const std::string& var, double v
 void accuracyCostStudy(const Dict& study, const std::filesystem::path& caseDir);
 void divergenceStudy(const Dict& study, const std::filesystem::path& caseDir);
 void switchErrorStudy(const Dict& study, const std::filesystem::path& caseDir);
-void kernelStudy(const Dict& study, const std::filesystem::path& caseDir);
 void tableOneStudy(const Dict& study, const std::filesystem::path& caseDir);
 void tableTwoStudy(const Dict& study, const std::filesystem::path& caseDir);
 void scalingStudy(const Dict& study, const std::filesystem::path& caseDir);

@@ -1,14 +1,13 @@
 // Shared pieces of the timing studies table1, table2 and scaling: the thread
-// counts to time, the thread count restored afterwards, robust timing, the MBM
-// sample count.
+// counts to time, the thread count restored afterwards, robust timing, the
+// boundary sample count.
 #pragma once
 
 #include "BenchCommon.hpp"
-#include "PolyhedronTables.hpp"
-#include "SurfaceQuadrature.hpp"
 
 #include <magFoam/Body.hpp>
 #include <magFoam/Dictionary.hpp>
+#include <magFoam/FieldEvaluator.hpp>
 #include <magFoam/Threads.hpp>
 
 #include <algorithm>
@@ -38,20 +37,16 @@ struct RestoreThreads {
     ~RestoreThreads() { setThreads(n); }
 };
 
-// Boundary samples MBM takes on `shape` under the evaluator dictionary `field`
-// (type MBM, or a hybrid's near model); 0 when MBM samples nothing.
+// Boundary samples the evaluator of dictionary `field` takes on `shape` (a
+// hybrid's: its near model's, MBM by default); 0 when it samples no boundary
+// (FieldEvaluator::boundarySamples).
 inline std::size_t mbmSamples(const Dict& field, const Shape& shape) {
     const std::string type = field.get<std::string>("type");
     if (type == "hybrid") {
         const Dict near = field.has("near") ? field.sub("near") : Dict::fromString("type: MBM\n", "hybrid near");
         return mbmSamples(near, shape);
     }
-    if (type != "MBM") return 0;
-    const Dict q = field.subOrEmpty("quadrature");
-    const mbm::PolyhedronTables tables(shape.mesh.vertices, shape.mesh.triangles);
-    return mbm::buildSurfaceQuadrature(tables, mbm::quadratureRuleFromName(q.get<std::string>("type", "gauss")),
-                                       q.get<int>("n", 10))
-        .size();
+    return FieldEvaluator::New(field)->boundarySamples(shape);
 }
 
 } // namespace mag::bench

@@ -15,8 +15,7 @@
 //     points: 4096
 //     minSeconds: 0.2      # per timing
 //     repeats: 3           # the fastest of these timings (the machine may be shared)
-#include "BenchCommon.hpp"
-#include "Studies.hpp"
+#include "BenchMBM.hpp"
 
 #include "KernelPath.hpp"
 #include "MBMReference.hpp"
