@@ -85,9 +85,7 @@ Body softBody(const std::string& name, std::shared_ptr<const mag::Shape> shape, 
     b.material.name = "steel";
     b.material.model = mag::Material::Model::soft;
     b.material.density = 7850;
-    b.material.k = k;
-    b.material.Js = Js;
-    b.material.alpha = alpha;
+    b.material.properties = {{"k", k}, {"Js", Js}, {"alpha", alpha}};
     b.position = position;
     return b;
 }
@@ -222,7 +220,7 @@ TEST_CASE("LLG: the damping alpha changes the path, not the equilibrium", "[LLG]
         for (double alpha : {0.05, 0.5, 5.0}) {
             auto model = llg();
             UniformCase c = uniformCase(ratio, u, -0.5 * 2 / mag::mu0 * u);
-            c.bodies[1].material.alpha = alpha;
+            c.bodies[1].material.properties["alpha"] = alpha;
             const mag::InductionReport r = model->converge(c.bodies, c.field);
             std::printf("LLG alpha %g, k|B|/(mu0 Ms) = %g: %d sweeps\n", alpha, ratio, r.iterations);
             CHECK(r.converged);
@@ -358,7 +356,7 @@ TEST_CASE("LLG: keys are read, checked, and misspellings rejected", "[LLG]") {
 
     // A soft material without a usable k (built in code, not read) is an InputError.
     UniformCase bad = uniformCase(0.5, Vec3::UnitZ(), Vec3::Zero());
-    bad.bodies[1].material.k = 0;
+    bad.bodies[1].material.properties["k"] = 0;
     CHECK_THROWS_AS(llg()->converge(bad.bodies, bad.field), mag::InputError);
 }
 

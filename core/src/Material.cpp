@@ -1,10 +1,33 @@
 #include "magFoam/Material.hpp"
 
+#include "magFoam/Error.hpp"
+
 namespace mag {
+
+double Material::property(const std::string& key) const {
+    const auto it = properties.find(key);
+    if (it == properties.end()) {
+        if (dict) dict->failHere("soft material '" + name + "' needs key '" + key + "'");
+        throw InputError("material '" + name + "': soft material needs key '" + key + "'");
+    }
+    return it->second;
+}
+
+double Material::property(const std::string& key, double fallback) const {
+    const auto it = properties.find(key);
+    return it == properties.end() ? fallback : it->second;
+}
+
+void Material::fail(const std::string& key, const std::string& message) const {
+    if (dict && dict->has(key)) dict->fail(key, message);
+    if (dict) dict->failHere(key + ": " + message);
+    throw InputError("material '" + name + "': " + key + ": " + message);
+}
 
 Material Material::read(const std::string& name, const Dict& d) {
     Material m;
     m.name = name;
+    m.dict = d;
     const std::string model = d.getWord("model", {"permanent", "soft"});
     m.model = model == "soft" ? Model::soft : Model::permanent;
     m.density = d.get<double>("density");
@@ -12,15 +35,12 @@ Material Material::read(const std::string& name, const Dict& d) {
     if (m.model == Model::permanent) {
         m.Br = d.get<double>("Br");
         if (m.Br < 0) d.fail("Br", "remanence Br must be >= 0 (tesla); reverse the magnetization direction instead");
+        d.reportUnused();
     } else {
-        m.k = d.get<double>("k");
-        if (m.k <= 0) d.fail("k", "induction control k must be positive");
-        m.Js = d.get<double>("Js");
-        if (m.Js <= 0) d.fail("Js", "saturation polarization Js must be positive (tesla)");
-        m.alpha = d.get<double>("alpha", 0.5);
-        if (m.alpha <= 0) d.fail("alpha", "LLG damping alpha must be positive");
+        // The induction model checks these (names, ranges) when it meets the body.
+        for (const auto& key : d.keys())
+            if (key != "model" && key != "density") m.properties[key] = d.get<double>(key);
     }
-    d.reportUnused();
     return m;
 }
 

@@ -1,23 +1,25 @@
-// Materials (constant/materials.yaml):
+// Materials (constant/materials.yaml): every top-level key names one.
 //
 //   N42:   {model: permanent, Br: 1.3, density: 7500}     # Br: remanence, T
-//   steel: {model: soft, k: 5.0, Js: 2.0, density: 7850}  # k: induction control
-//                                                         # (D = I/k, Eq. 19);
-//                                                         # Js = mu0 Ms, T
+//   steel: {model: soft, k: 5.0, Js: 2.0, density: 7850}  # keys of the induction model
 //
-// | key     | model     | required | unit  | meaning                          |
-// |---------|-----------|----------|-------|----------------------------------|
-// | model   | both      | yes      |       | permanent or soft                |
-// | density | both      | yes      | kg/m3 | > 0                              |
-// | Br      | permanent | yes      | T     | remanence, |M| = Br/mu0, >= 0    |
-// | k       | soft      | yes      |       | > 0, M = k B/mu0 below saturation|
-// | Js      | soft      | yes      | T     | saturation polarization, > 0     |
-// | alpha   | soft      | no (0.5) |       | LLG damping (Eq. 20)             |
+// | key     | model     | required | unit  | meaning                                  |
+// |---------|-----------|----------|-------|------------------------------------------|
+// | model   | both      | yes      |       | permanent or soft                        |
+// | density | both      | yes      | kg/m3 | > 0                                      |
+// | Br      | permanent | yes      | T     | remanence, |M| = Br/mu0, >= 0            |
+// | (other) | soft      |          |       | numbers read and checked by the induction|
+// |         |           |          |       | model (e.g. LLG: k, Js, alpha)           |
+//
+// A soft material's magnetization is the induction model's business, so core
+// keeps its keys as they are and the model validates them: a key the selected
+// model does not use is an error naming it (docs/case-reference.md#materials).
 #pragma once
 
 #include "magFoam/Dictionary.hpp"
 
 #include <map>
+#include <optional>
 #include <string>
 
 namespace mag {
@@ -28,11 +30,20 @@ struct Material {
     Model model = Model::permanent;
     double density = 0;  // kg/m^3
     double Br = 0;       // T (permanent)
-    double k = 0;        // induction control parameter (soft)
-    double Js = 0;       // saturation polarization mu0*Ms, T (soft)
-    double alpha = 0.5;  // LLG damping (soft)
+    // Soft: every key but `model` and `density`, for the induction model.
+    std::map<std::string, double> properties;
+    std::optional<Dict> dict;  // where the material was read (none when built in code)
 
     bool soft() const { return model == Model::soft; }
+    bool has(const std::string& key) const { return properties.count(key) != 0; }
+    // The soft property `key`; `fallback` when absent, or an error naming the
+    // key when there is no fallback.
+    double property(const std::string& key) const;
+    double property(const std::string& key, double fallback) const;
+    // An InputError about `key` of this material: "file:line:col: steel.k: message"
+    // when it was read from a file.
+    [[noreturn]] void fail(const std::string& key, const std::string& message) const;
+
     static Material read(const std::string& name, const Dict& dict);
 };
 

@@ -1,5 +1,5 @@
 // Induced magnetization of soft bodies by Landau-Lifshitz-Gilbert relaxation
-// (paper Sec. 4.3, Eqs. 2, 19, 20; Algorithm 1 lines 3-12; PHYSICS.md "Induction"):
+// (paper Sec. 4.3, Eqs. 2, 19, 20; Algorithm 1 lines 3-12; docs/physics.md#induction):
 //
 //   induction: {type: LLG, tolerance: 1e-6, maxIterations: 500}
 //
@@ -333,7 +333,8 @@ public:
             if (bodies[i].soft()) soft.push_back(i);
         const std::size_t n = soft.size();
         if (n == 0) return report;
-        for (std::size_t i : soft) checkMaterial(bodies[i]);
+        std::vector<SoftParams> par(n);
+        for (std::size_t a = 0; a < n; ++a) par[a] = softParams(bodies[soft[a]]);
 
         // Fields at the soft bodies' centres: permanent part and soft-to-soft maps.
         std::vector<Vec3> centres(n);
@@ -346,7 +347,7 @@ public:
         std::vector<double> Js(n);
         for (std::size_t a = 0; a < n; ++a) {
             const Body& body = bodies[soft[a]];
-            Js[a] = body.material.Js;
+            Js[a] = par[a].Js;
             M[a] = body.magnetization();
         }
         for (std::size_t b = 0; b < n; ++b) {
@@ -371,7 +372,7 @@ public:
             double worst = 0;
             for (std::size_t b = 0; b < n; ++b) {
                 const Vec3 B = fieldAt(b, Bfixed, G, M);
-                const Material& mat = bodies[soft[b]].material;
+                const SoftParams& mat = par[b];
                 finiteField[b] = B.allFinite();
                 if (!finiteField[b]) {
                     change[b] = std::numeric_limits<double>::infinity();
@@ -459,11 +460,29 @@ private:
         Vec3 m1, m2;
     };
 
-    static void checkMaterial(const Body& body) {
+    // A soft material's keys as LLG reads them (Material::properties):
+    //   k      required, > 0   induction control, D = I/k (Eq. 19)
+    //   Js     required, > 0   saturation polarization mu0 Ms, T
+    //   alpha  default 0.5     damping (Eq. 20), > 0
+    // Any other key is an error naming it: it belongs to another induction model.
+    struct SoftParams {
+        double k = 0, Js = 0, alpha = 0.5;
+    };
+    static SoftParams softParams(const Body& body) {
         const Material& m = body.material;
-        if (!(m.k > 0 && m.Js > 0 && m.alpha > 0))
-            throw InputError("LLG induction: soft body '" + body.name + "' (material '" + m.name +
-                             "') needs k > 0, Js > 0 and alpha > 0");
+        static const std::vector<std::string> keys = {"k", "Js", "alpha"};
+        for (const auto& [key, value] : m.properties)
+            if (std::find(keys.begin(), keys.end(), key) == keys.end())
+                m.fail(key, "LLG induction does not use soft-material key '" + key + "' (body '" + body.name +
+                                "'); LLG reads k, Js and alpha");
+        SoftParams p;
+        p.k = m.property("k");
+        p.Js = m.property("Js");
+        p.alpha = m.property("alpha", 0.5);
+        if (!(p.k > 0)) m.fail("k", "induction control k must be positive (LLG, body '" + body.name + "')");
+        if (!(p.Js > 0)) m.fail("Js", "saturation polarization Js must be positive (tesla; body '" + body.name + "')");
+        if (!(p.alpha > 0)) m.fail("alpha", "LLG damping alpha must be positive (body '" + body.name + "')");
+        return p;
     }
 
     // B (world) of every magnetized non-soft body at the soft centres.
