@@ -61,16 +61,14 @@ CubePair cubePair(double gap) {
 // The paper's gaps (Figs. 4, 5), in m.
 const std::vector<double> paperGaps = {0.0002, 0.0005, 0.001, 0.002, 0.005, 0.01, 0.02, 0.05};
 
-// Counters from describe(): pairs near/far, points near/far.
+// Counters from stats(): pairs near/far, points near/far.
 struct Counts {
     long nearPairs, farPairs, nearPoints, farPoints;
 };
 Counts counts(const mag::FieldEvaluator& f) {
-    std::smatch m;
-    const std::string s = f.describe();
-    REQUIRE(std::regex_search(
-        s, m, std::regex("pairs near ([0-9]+) far ([0-9]+); points near ([0-9]+) far ([0-9]+)\\)$")));
-    return {std::stol(m[1]), std::stol(m[2]), std::stol(m[3]), std::stol(m[4])};
+    const mag::FieldStats s = f.stats();
+    auto c = [&](const char* name) { return static_cast<long>(s.count(name)); };
+    return {c("nearPairs"), c("farPairs"), c("nearPoints"), c("farPoints")};
 }
 
 // --- brute-force distance between two convex triangle meshes (world vertices) ---------

@@ -427,7 +427,7 @@ TEST_CASE("overlap: charge follows Akoun-Yonnet, amperian its energy force; full
         const Samples s = place(q, Eigen::Matrix3d::Identity(), Vec3::Zero());
         const Wrench w = wrenchOf(cube, M, s, M, Vec3::Zero(), model);
         CHECK(w.force.norm() <= 1e-9); // rounding of ~30 N sums
-        CHECK(w.torque().norm() <= 1e-12);
+        CHECK(w.totalTorque().norm() <= 1e-12);
     }
     // exact contact (d = 0): finite; the charge force is the mean of its one-sided limits
     // (-32.38 N apart, +47.20 N overlapped): first-order convergence there (log-singular
@@ -462,10 +462,10 @@ TEST_CASE("Newton's third law: |F12 + F21| / |F12| falls with refinement", "[mbm
         const Wrench w12 = wrenchOf(t1, M1, place(q2, R2, c2), R2 * M2b, c2, OverlapModel::charge);
         const Wrench w21b = wrenchOf(t2, M2b, place(q1, R2.transpose(), -R2.transpose() * c2),
                                      R2.transpose() * M1, -R2.transpose() * c2, OverlapModel::charge);
-        const Vec3 F21 = R2 * w21b.force, T21 = R2 * w21b.torque();
+        const Vec3 F21 = R2 * w21b.force, T21 = R2 * w21b.totalTorque();
         const double err = (w12.force + F21).norm() / w12.force.norm();
         // angular momentum about body 1's centre: T1 + T2 + c2 x F12 = 0
-        const double errL = (w12.torque() + T21 + c2.cross(w12.force)).norm() / w12.torque().norm();
+        const double errL = (w12.totalTorque() + T21 + c2.cross(w12.force)).norm() / w12.totalTorque().norm();
         std::printf("  n=%2d  |F12+F21|/|F12| = %.3e  |L balance|/|T12| = %.3e", n, err, errL);
         if (prev > 0) std::printf("  rate %.2f", std::log2(prev / err));
         std::printf("\n");
@@ -513,7 +513,7 @@ TEST_CASE("published wrenches: Akoun-Yonnet 1984 and Janssen torque", "[mbm][wre
     for (OverlapModel model : {OverlapModel::charge, OverlapModel::amperian}) {
         const Wrench w = wrenchOf(tj, Mj, place(qj, Eigen::Matrix3d::Identity(), cj), Mj, cj, model);
         CHECK((w.force - Vec3(-98.3296, 0, -105.2115)).norm() <= 2e-4); // 7 digits given
-        CHECK((w.torque() - Vec3(0, 0.422829, 0)).norm() <= 2e-6);      // 6 digits given
+        CHECK((w.totalTorque() - Vec3(0, 0.422829, 0)).norm() <= 2e-6);      // 6 digits given
     }
 }
 
@@ -566,29 +566,29 @@ TEST_CASE("torques vs brute-force volume and surface integrals, also in overlap"
         }
         const double Vov = oracle::overlapVolume(2 * hs, Vec3::Zero(), 2 * ht, ct);
         std::printf("\ntarget at (%g, %g, %g) mm, overlap %.3e m^3\n", ct.x() * 1e3, ct.y() * 1e3, ct.z() * 1e3, Vov);
-        std::printf("  amperian T  %+.9f %+.9f %+.9f  ref %+.9f %+.9f %+.9f\n", amp.magneticTorque.x(),
-                    amp.magneticTorque.y(), amp.magneticTorque.z(), Mt.cross(intB).x(), Mt.cross(intB).y(),
+        std::printf("  amperian T  %+.9f %+.9f %+.9f  ref %+.9f %+.9f %+.9f\n", amp.torque.x(),
+                    amp.torque.y(), amp.torque.z(), Mt.cross(intB).x(), Mt.cross(intB).y(),
                     Mt.cross(intB).z());
-        std::printf("  charge   T  %+.9f %+.9f %+.9f  ref %+.9f %+.9f %+.9f\n", chg.magneticTorque.x(),
-                    chg.magneticTorque.y(), chg.magneticTorque.z(), (mu0 * Mt.cross(intH)).x(),
+        std::printf("  charge   T  %+.9f %+.9f %+.9f  ref %+.9f %+.9f %+.9f\n", chg.torque.x(),
+                    chg.torque.y(), chg.torque.z(), (mu0 * Mt.cross(intH)).x(),
                     (mu0 * Mt.cross(intH)).y(), (mu0 * Mt.cross(intH)).z());
-        std::printf("  charge total %+.9f %+.9f %+.9f  ref %+.9f %+.9f %+.9f\n", chg.torque().x(),
-                    chg.torque().y(), chg.torque().z(), Tc.x(), Tc.y(), Tc.z());
-        std::printf("  amperian total %+.9f %+.9f %+.9f  ref %+.9f %+.9f %+.9f\n", amp.torque().x(),
-                    amp.torque().y(), amp.torque().z(), Ta.x(), Ta.y(), Ta.z());
+        std::printf("  charge total %+.9f %+.9f %+.9f  ref %+.9f %+.9f %+.9f\n", chg.totalTorque().x(),
+                    chg.totalTorque().y(), chg.totalTorque().z(), Tc.x(), Tc.y(), Tc.z());
+        std::printf("  amperian total %+.9f %+.9f %+.9f  ref %+.9f %+.9f %+.9f\n", amp.totalTorque().x(),
+                    amp.totalTorque().y(), amp.totalTorque().z(), Ta.x(), Ta.y(), Ta.z());
         // Surface references share the samples (8 points, 5 grading layers): the
         // surface-charge and Eq. 16-18 forms agree to ~1e-9; 1e-8 leaves margin.
         const double Tscale = Tc.norm() + Ta.norm();
-        CHECK((chg.torque() - Tc).norm() <= 1e-8 * Tscale);
-        CHECK((amp.torque() - Ta).norm() <= 1e-8 * Tscale);
+        CHECK((chg.totalTorque() - Tc).norm() <= 1e-8 * Tscale);
+        CHECK((amp.totalTorque() - Ta).norm() <= 1e-8 * Tscale);
         CHECK((chg.force - Fc).norm() <= 1e-8 * Fc.norm());
         // The current-sheet force differs from Eq. 16 by M_t oint B . n dA: zero, but only
         // to the rule's accuracy (measured 2e-8 .. 5e-8 of |F|)
         CHECK((amp.force - Fa).norm() <= 2 * Mt.norm() * std::abs(fluxB) + 1e-9 * Fa.norm());
         // Volume references (coarser rule, see above): 1e-6 of the scale. A wrong
         // formula (e.g. the couple counted twice, or A instead of phi) is off by O(1).
-        CHECK((amp.magneticTorque - Mt.cross(intB)).norm() <= 1e-6 * Tscale);
-        CHECK((chg.magneticTorque - mu0 * Mt.cross(intH)).norm() <= 1e-6 * Tscale);
+        CHECK((amp.torque - Mt.cross(intB)).norm() <= 1e-6 * Tscale);
+        CHECK((chg.torque - mu0 * Mt.cross(intH)).norm() <= 1e-6 * Tscale);
         // energies and overlap volume (the overlap volume is exact up to the rule)
         CHECK(en.overlapVolume == Approx(Vov).margin(1e-9 * 8 * ht.prod()));
         CHECK((en.integralB - intB).norm() <= 1e-6 * intB.norm());
@@ -605,7 +605,7 @@ TEST_CASE("torques vs brute-force volume and surface integrals, also in overlap"
         if (Vov == 0.0) {
             // no overlap: both models coincide
             CHECK((amp.force - chg.force).norm() <= 1e-9 * amp.force.norm());
-            CHECK((amp.torque() - chg.torque()).norm() <= 1e-9 * amp.torque().norm());
+            CHECK((amp.totalTorque() - chg.totalTorque()).norm() <= 1e-9 * amp.totalTorque().norm());
         }
     }
 }
@@ -669,8 +669,8 @@ TEST_CASE("energy consistency: F = -grad U (overlap) and T = -dU/dtheta", "[mbm]
         // integrand 0.5 mm from the source) is converged to ~1e-9
         std::printf("%s: |T + dU/dtheta| / |T| = %.2e (rotation)\n",
                     model == OverlapModel::amperian ? "amperian" : "charge",
-                    (w.torque() + dU).norm() / w.torque().norm());
-        CHECK((w.torque() + dU).norm() <= 1e-6 * w.torque().norm());
+                    (w.totalTorque() + dU).norm() / w.totalTorque().norm());
+        CHECK((w.totalTorque() + dU).norm() <= 1e-6 * w.totalTorque().norm());
     }
 }
 
@@ -693,6 +693,6 @@ TEST_CASE("rotated target: complete charge torque vs the oracle's surface-charge
                                   target.centre, model);
         // separated bodies: spectrally converged on both sides (~1e-10)
         CHECK((w.force - ref.force).norm() <= 1e-8 * ref.force.norm());
-        CHECK((w.torque() - ref.torque).norm() <= 1e-8 * ref.torque.norm());
+        CHECK((w.totalTorque() - ref.torque).norm() <= 1e-8 * ref.torque.norm());
     }
 }

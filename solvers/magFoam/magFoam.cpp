@@ -68,7 +68,6 @@ void describeRun(const Case& c, const MagneticSystem& magnets, const RigidBodyBa
     spdlog::info("magFoam: {} bodies, {} steps of {} s from t = {}, {} thread(s)", c.bodies().size(), loop.steps(),
                  loop.deltaT(), loop.startTime(), threads);
     spdlog::info("  field:      {}", magnets.fieldEvaluator().describe());
-    spdlog::info("  dipole sum: {}", magnets.farField().describe());
     spdlog::info("  induction:  {}", c.hasSoftBodies() ? magnets.inductionModel().describe() : "none (no soft bodies)");
     spdlog::info("  rigid body: {}", backend.describe());
 }
@@ -131,6 +130,8 @@ int run(const ArgList& args) {
     }
     stats.summary();
     spdlog::info("  field: {}", magnets.fieldEvaluator().describe());
+    if (const FieldStats fs = magnets.fieldEvaluator().stats(); !fs.counts.empty())
+        spdlog::info("  field counters: {}", fs.format());
     return 0;
 }
 

@@ -1,5 +1,5 @@
 // FieldEvaluator: the field of one magnetized body and the wrench it exerts on
-// another (paper Sec. 3 for EDM, Sec. 4 for MBM). Selected at run time from
+// another (paper Secs. 3-4), and the wrenches within a set of bodies. Selected at run time from
 // system/magSchemes.yaml `field: {type: ...}`.
 //
 // Contract: all inputs and outputs are in the WORLD frame; torques are about
@@ -10,26 +10,44 @@
 #include "magFoam/Body.hpp"
 #include "magFoam/Dictionary.hpp"
 #include "magFoam/Registry.hpp"
+#include "magFoam/Wrench.hpp"
 
 #include <cstdint>
-#include <limits>
 #include <memory>
 #include <span>
 #include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
 
 namespace mag {
 
-// Wrench on a target body from one source body.
-struct Wrench {
-    Vec3 force = Vec3::Zero();            // N (Eq. 16)
-    Vec3 torque = Vec3::Zero();           // magnetic torque, N m (Eq. 17)
-    Vec3 mechanicalTorque = Vec3::Zero(); // about the target's COM, N m (Eq. 18)
-    double energy = 0;                    // interaction energy, J (see the model)
+// One evaluation of a pair: the source's field acts on the target's samples.
+struct BodyPair {
+    std::size_t source, target;
+};
 
-    Vec3 totalTorque() const { return torque + mechanicalTorque; }
-    Wrench& operator+=(const Wrench& o) {
-        force += o.force, torque += o.torque, mechanicalTorque += o.mechanicalTorque, energy += o.energy;
-        return *this;
+// Named counters of an evaluator, in a fixed order. Nested evaluators' counters
+// come with a prefix ("near.", "far.").
+struct FieldStats {
+    std::vector<std::pair<std::string, std::uint64_t>> counts;
+
+    // The counter `name`, 0 when absent.
+    std::uint64_t count(std::string_view name) const {
+        for (const auto& [k, v] : counts)
+            if (k == name) return v;
+        return 0;
+    }
+    void add(std::string name, std::uint64_t value) { counts.emplace_back(std::move(name), value); }
+    // Another evaluator's counters under `prefix`.
+    void add(const std::string& prefix, const FieldStats& other) {
+        for (const auto& [k, v] : other.counts) counts.emplace_back(prefix + k, v);
+    }
+    // "name N, name N, ..." for logs; empty without counters.
+    std::string format() const {
+        std::string s;
+        for (const auto& [k, v] : counts) s += (s.empty() ? "" : ", ") + k + " " + std::to_string(v);
+        return s;
     }
 };
 
@@ -48,15 +66,19 @@ public:
     // One line for logs: type and main settings.
     virtual std::string describe() const = 0;
 
-    // Far-field tier (DipoleFarField.hpp): a pair of bodies farther apart than
-    // dipoleReach(a) + dipoleReach(b) (centres of mass) interacts as two point
-    // dipoles, and MagneticSystem evaluates all such pairs in bulk instead of
-    // calling interaction(). +inf (the default): never. An evaluator that
-    // returns a finite reach must treat such a pair the same way in its own
-    // interaction() (dipolePairWrench), so that both paths agree.
-    virtual double dipoleReach(const Body&) const { return std::numeric_limits<double>::infinity(); }
-    // The system reports how many pairs it took in bulk (for describe()).
-    virtual void countDipolePairs(std::uint64_t) const {}
+    // The wrench on every body of a set from all the others in it: the scene
+    // entry point (MagneticSystem calls it once per step). `out` is indexed
+    // like `bodies`; only bodies listed in `active` take part, and with
+    // skipFixedPairs pairs of two fixed bodies are left out. An evaluator may
+    // treat some pairs in bulk (e.g. far pairs as point dipoles, by a fast
+    // sum); the default evaluates every pair once with interaction()
+    // (addPairWrenches), in increasing (i, j) order of `active`.
+    virtual void addWrenches(std::span<const Body> bodies, std::span<const std::size_t> active,
+                             bool skipFixedPairs, std::span<Wrench> out) const;
+
+    // Counters since construction (pairs by tier, softened pairs, ...) for
+    // logs, tests and benchmarks; the default has none.
+    virtual FieldStats stats() const { return {}; }
 
     // Boundary quadrature samples that interaction() takes on a target of this
     // shape (cost reports: magBench's table1, table2); 0, the default, where the
@@ -73,6 +95,16 @@ public:
             registry().add(name, [](const Dict& d) { return std::unique_ptr<FieldEvaluator>(new T(d)); });
         }
     };
+
+protected:
+    // Adds the wrenches of the given pairs, each evaluated once with
+    // interaction(): the target gets the wrench, the source the opposite force
+    // and the torque that conserves angular momentum about any point (reported
+    // as `torque`, mechanicalTorque zero). A quadrature error then cannot make
+    // a cluster of touching magnets push itself along or spin itself up. Pairs
+    // run on the worker threads (Threads.hpp) into per-pair slots that are
+    // summed in pair order: bit-identical for any thread count.
+    void addPairWrenches(std::span<const Body> bodies, std::span<const BodyPair> pairs, std::span<Wrench> out) const;
 };
 
 } // namespace mag

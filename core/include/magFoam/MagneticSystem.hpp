@@ -5,7 +5,6 @@
 #pragma once
 
 #include "magFoam/Case.hpp"
-#include "magFoam/DipoleMultipole.hpp"
 #include "magFoam/FieldEvaluator.hpp"
 #include "magFoam/InductionModel.hpp"
 
@@ -17,8 +16,7 @@ namespace mag {
 
 class MagneticSystem {
 public:
-    // Models from the case's system/magSchemes.yaml (field:, induction:, and
-    // farField:, how dipole pairs are summed; DipoleMultipole.hpp).
+    // Models from the case's system/magSchemes.yaml (field:, induction:).
     explicit MagneticSystem(const Case& c);
     MagneticSystem(std::unique_ptr<FieldEvaluator> field, std::unique_ptr<InductionModel> induction);
 
@@ -26,14 +24,10 @@ public:
     // nothing, and costs nothing, when no body is soft.
     InductionReport converge(std::vector<Body>& bodies) const;
 
-    // Wrench on each body from all others (lines 13-24), one evaluation per
-    // pair: the other body gets the opposite force and the torque that
-    // conserves angular momentum (its torque is reported as `torque`, with
-    // mechanicalTorque zero). Unmagnetized bodies are skipped; with
-    // skipFixedTargets, pairs of two fixed bodies are skipped.
-    // Pairs run on the worker threads (Threads.hpp); each pair's wrench goes
-    // to its own slot and the slots are summed in pair order, so the result
-    // is bit-identical for any thread count.
+    // Wrench on each body from all others (lines 13-24), through the field
+    // evaluator's addWrenches(): unmagnetized bodies are skipped; with
+    // skipFixedTargets, pairs of two fixed bodies are skipped. Bit-identical
+    // for any thread count.
     std::vector<Wrench> wrenches(const std::vector<Body>& bodies, bool skipFixedTargets = false) const;
 
     // The magnetic part of one solver step, as magFoam runs it: converge, then
@@ -49,15 +43,12 @@ public:
                std::span<Vec3> A = {}, std::span<Vec3> H = {}, const Body* exclude = nullptr) const;
 
     const FieldEvaluator& fieldEvaluator() const { return *field_; }
-    const FarFieldSettings& farField() const { return farField_; }
-    void setFarField(const FarFieldSettings& s) { farField_ = s; }
     const InductionModel& inductionModel() const { return *induction_; }
     InductionModel& inductionModel() { return *induction_; }  // restart state (InductionModel::readState)
 
 private:
     std::unique_ptr<FieldEvaluator> field_;
     std::unique_ptr<InductionModel> induction_;
-    FarFieldSettings farField_;
 };
 
 } // namespace mag

@@ -53,7 +53,7 @@
 // A = mu0/(4 pi) m x r / eps^3; outside it the exact dipole field (continuous normal B
 // and A at r = eps). Coinciding dipoles (overlapping bodies) therefore give finite
 // numbers; nearby but unsoftened ones still give the huge forces that are EDM's flaw
-// (paper Sec. 3, Fig. 2). Every softened pair is counted: softenedPairs(), describe(),
+// (paper Sec. 3, Fig. 2). Every softened pair is counted: softenedPairs(), stats(),
 // and a debug log line per interaction or evaluate call that softened any.
 //
 // Threads: interaction() and evaluate() may run concurrently: the dipole tables are
@@ -227,8 +227,14 @@ public:
     std::string describe() const override {
         std::ostringstream os;
         os << "EDM (n=" << n_ << ", adaptive " << (adaptive_ ? "on" : "off") << ", sphere " << sphereName_
-           << ", softening " << softening_ << "; softened dipole pairs: " << softenedPairs() << ")";
+           << ", softening " << softening_ << ")";
         return os.str();
+    }
+
+    FieldStats stats() const override {
+        FieldStats s;
+        s.add("softenedPairs", softenedPairs());
+        return s;
     }
 
     // Dipole pairs (or point-dipole pairs in evaluate) closer than the softening floor

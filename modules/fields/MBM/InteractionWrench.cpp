@@ -73,11 +73,11 @@ Wrench interactionWrench(const PolyhedronTables& source, const Vec3& Ms,
     out.mechanicalTorque = Tm;
     if (charge) {
         // T = mu0 Mt x int H dV, int H dV = -sum w phi n, phi = Ms . S / (4 pi)
-        out.magneticTorque = -(mu0 / kFourPi) * Mt.cross(phiN);
+        out.torque = -(mu0 / kFourPi) * Mt.cross(phiN);
         out.energy = (mu0 / kFourPi) * chargeEnergy;
     } else {
         nxA *= mu0 / kFourPi;                // sum w n x A = int B dV
-        out.magneticTorque = Mt.cross(nxA); // Eq. 17
+        out.torque = Mt.cross(nxA); // Eq. 17
         out.energy = -Mt.dot(nxA);
     }
     return out;

@@ -32,6 +32,8 @@
 
 #include "PolyhedronField.hpp"
 
+#include <magFoam/Wrench.hpp>
+
 #include <span>
 #include <string_view>
 
@@ -47,15 +49,8 @@ enum class OverlapModel {
 /// Parses "charge" or "amperian"; throws std::invalid_argument listing the valid names.
 OverlapModel overlapModelFromName(std::string_view name);
 
-/// Force and torques on the target, source frame.
-struct Wrench {
-    Vec3 force = Vec3::Zero();            ///< N (Eq. 16)
-    Vec3 magneticTorque = Vec3::Zero();   ///< N m (Eq. 17 or its charge counterpart)
-    Vec3 mechanicalTorque = Vec3::Zero(); ///< N m about r_c (Eq. 18)
-    double energy = 0.0;                  ///< J, interaction energy of the chosen model
-    /// Total torque about r_c.
-    Vec3 torque() const { return magneticTorque + mechanicalTorque; }
-};
+/// Force and torques on the target (mag::Wrench), here in the source frame.
+using mag::Wrench;
 
 /// Force, magnetic torque, mechanical torque about rc and energy on the target.
 /// source, Ms: the source's tables and magnetization (A/m, source frame);

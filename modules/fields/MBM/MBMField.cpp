@@ -94,23 +94,23 @@ public:
             return mbm::interactionWrench(src.tables, source.magnetizationBody, P.subspan(begin, count),
                                           W.subspan(begin, count), N.subspan(begin, count), Mt, rc, overlap_);
         };
-        mbm::Wrench w;
+        Wrench w;
         if (blocks <= 1) {
             w = block(0);
         } else {
-            std::vector<mbm::Wrench> partial(blocks);
+            std::vector<Wrench> partial(blocks);
             parallelFor(blocks, [&](std::size_t b) { partial[b] = block(b); });
             w = partial[0];
             for (std::size_t b = 1; b < blocks; ++b) {
                 w.force += partial[b].force;
-                w.magneticTorque += partial[b].magneticTorque;
+                w.torque += partial[b].torque;
                 w.mechanicalTorque += partial[b].mechanicalTorque;
                 w.energy += partial[b].energy;
             }
         }
         Wrench out;
         out.force = source.orientation * w.force;
-        out.torque = source.orientation * w.magneticTorque;
+        out.torque = source.orientation * w.torque;
         out.mechanicalTorque = source.orientation * w.mechanicalTorque;
         out.energy = w.energy;
         return out;

@@ -56,14 +56,15 @@
 
 #include "PolyhedronTables.hpp"
 
+#include <magFoam/Types.hpp>
+
 #include <numbers>
 #include <span>
 
 namespace mag::mbm {
 
-/// Vacuum permeability (T m / A), 4e-7 pi exactly as a double
-/// (docs/physics.md#units-and-conventions).
-inline constexpr double mu0 = 4e-7 * std::numbers::pi;
+/// Vacuum permeability: the one of magFoam/Types.hpp.
+using mag::mu0;
 
 /// Relative edge regularization delta: omega_e uses max(distance to the edge line,
 /// delta L). 1e-9 L (1e-11 m for a 1 cm edge) changes nothing measurable elsewhere.

@@ -23,6 +23,8 @@
 // | dipoleTolerance  | no       | (not set)          | -    | instead of dipoleRatio: reach |
 // |                  |          |                    |      | from each shape's moments, so |
 // |                  |          |                    |      | a dipole pair's error <= this |
+// | farField         | no       | {method: auto}     | -    | how the dipole pairs are      |
+// |                  |          |                    |      | summed (DipoleMultipole.hpp)  |
 //
 // The switch (per pair; R1, R2 bounding radii about the centres of mass c1, c2):
 //   boundingSphere  gap = |c1 - c2| - R1 - R2, the distance between the bounding
@@ -33,9 +35,9 @@
 //                   is already below the threshold; it catches elongated bodies whose
 //                   bounding spheres overlap while the bodies are far apart.
 //   near when gap < threshold * max(R1, R2), else far.
-// Reading of the paper (PHYSICS.md "Hybrid switch"): Sec. 5 says both "greater than
+// Reading of the paper (docs/physics.md#hybrid-switch): Sec. 5 says both "greater than
 // the bounding sphere radius -> EDM" and "greater ..., i.e. close -> MBM". We take,
-// as PHYSICS.md does, the gap between the bounding spheres below one bounding radius
+// as docs/physics.md#hybrid-switch does, the gap between the bounding spheres below one bounding radius
 // as "close" (MBM); the other literal reading (far apart -> MBM) contradicts the
 // section's own rationale and Fig. 5 (EDM is accurate only far apart). threshold is
 // that radius factor; the radius is the larger of the two bodies'.
@@ -49,8 +51,8 @@
 // puts face gaps d < 1.598 cm on MBM (gauss n = 10: 3.5e-4 at d = 0.02 cm, 1.5e-5 at
 // 0.1 cm, < 1e-9 from 0.5 cm on) and d >= 1.598 cm on EDM n = 2, which overestimates
 // the attraction by 0.12 % at d = 1.6 cm, 0.072 % at 2 cm, 0.005 % at 5 cm (n = 3
-// would give 0.024 % at 1.6 cm for 11x the cost). Far pairs cost ~1 us instead of
-// ~0.5 ms for MBM n = 10. A lower threshold trades accuracy for speed: 0.31 switches
+// would give 0.024 % at 1.6 cm at a much higher cost; timings: cases/benchmarks).
+// A lower threshold trades accuracy for speed: 0.31 switches
 // these cubes at d = 1 cm (EDM n = 2: 0.30 % off), 0 at d = 0.73 cm.
 //
 // Dipole tier (the broad phase of large scenes: most pairs are far). Each body has a
@@ -63,9 +65,9 @@
 //   F = 3 mu0/(4 pi d^5) [(ms.r) mt + (mt.r) ms + (ms.mt) r - 5 (ms.r)(mt.r) r / d^2]
 //   torque = mt x B_s(c_t), mechanicalTorque = 0 (the dipole sits at the COM),
 //   energy = -mt . B_s(c_t).
-// MagneticSystem finds these pairs with a grid and sums them in bulk (a few ns a pair
-// instead of ~0.1 us through interaction(); dipoleReach() tells it the reach);
-// interaction() gives the same wrench for a pair called directly.
+// addWrenches() finds the other pairs with a grid and sums the dipole pairs in bulk
+// (DipoleFarField.hpp; or by the fast multipole method, DipoleMultipole.hpp, as
+// `farField:` says); interaction() gives the same wrench for a pair called directly.
 // Momentum and angular momentum are conserved to rounding.
 // Error bound. The field of a uniformly magnetized body is -M . grad of the Newtonian
 // potential of its volume, so its multipoles beyond the dipole come from the volume's
@@ -90,17 +92,20 @@
 //
 // Counters: near/far decisions for pairs and for evaluate() points are counted
 // (atomics, all threads), dipole pairs too, and logged at debug level per pair;
-// describe() reports them so apps can print a run summary. Thread-safe: the members
-// are read-only after construction apart from the atomic counters.
+// stats() reports them (with the near and far models' own under "near."/"far.").
+// Thread-safe: the members are read-only after construction apart from the atomic
+// counters.
 #include "Gjk.hpp"
+#include "DipoleFarField.hpp"
+#include "DipoleMultipole.hpp"
 
-#include <magFoam/DipoleFarField.hpp>
 #include <magFoam/FieldEvaluator.hpp>
 
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -137,6 +142,7 @@ public:
                 d.fail("dipoleRatio",
                        "hybrid dipoleRatio must be >= 0 (a factor of R1 + R2; 0 turns the dipole tier off)");
         }
+        farField_ = FarFieldSettings::read(d.subOrEmpty("farField"));
     }
 
     void evaluate(const Body& source, std::span<const Vec3> points, std::span<Vec3> B, std::span<Vec3> A,
@@ -167,7 +173,7 @@ public:
     }
 
     Wrench interaction(const Body& source, const Body& target) const override {
-        if (isDipolePair(farFieldBody(source, *this), farFieldBody(target, *this))) {
+        if (isDipolePair(farFieldBody(source, dipoleReach(source)), farFieldBody(target, dipoleReach(target)))) {
             dipolePairs_.fetch_add(1, std::memory_order_relaxed);
             spdlog::debug("hybrid: '{}' -> '{}': dipole pair", source.name, target.name);
             return dipolePairWrench(source.magneticMoment(), target.magneticMoment(), target.position - source.position);
@@ -183,31 +189,75 @@ public:
     }
 
     std::string describe() const override {
-        // The counters stay last: tests and scripts read "pairs near N far N; points ...".
         std::ostringstream os;
         os << "hybrid (switch " << switchName_ << ", threshold " << threshold_;
         if (dipoleTolerance_ > 0)
             os << ", dipoleTolerance " << dipoleTolerance_;
         else
             os << ", dipoleRatio " << dipoleRatio_;
-        os
-           << "; near: " << near_->describe() << "; far: " << far_->describe() << "; dipole pairs " << dipolePairs_
-           << "; pairs near " << nearPairs_ << " far " << farPairs_ << "; points near " << nearPoints_ << " far "
-           << farPoints_ << ")";
+        os << ", dipole sum " << farField_.describe() << "; near: " << near_->describe() << "; far: " << far_->describe()
+           << ")";
         return os.str();
+    }
+
+    FieldStats stats() const override {
+        FieldStats s;
+        s.add("dipolePairs", dipolePairs_);
+        s.add("nearPairs", nearPairs_);
+        s.add("farPairs", farPairs_);
+        s.add("nearPoints", nearPoints_);
+        s.add("farPoints", farPoints_);
+        s.add("multipoleSums", multipoleSums_);             // addWrenches calls that used the multipole sum
+        s.add("dipoleSumNanoseconds", dipoleSumNanoseconds_);  // wall time in the dipole sums
+        s.add("near.", near_->stats());
+        s.add("far.", far_->stats());
+        return s;
+    }
+
+    // The dipole pairs in bulk, the others (found by a grid, not by visiting
+    // every pair) one by one through interaction().
+    void addWrenches(std::span<const Body> bodies, std::span<const std::size_t> active, bool skipFixedPairs,
+                     std::span<Wrench> out) const override {
+        std::vector<FarFieldBody> tier;
+        tier.reserve(active.size());
+        for (std::size_t i : active) tier.push_back(farFieldBody(bodies[i], dipoleReach(bodies[i])));
+        // Sample the body that moves (a fixed body needs no wrench); otherwise the
+        // one listed later. Chunks bound the memory of large scenes.
+        constexpr std::size_t kChunk = 65536;
+        std::vector<BodyPair> pairs;
+        for (const auto& [a, b] : nearPairs(tier, skipFixedPairs)) {
+            const std::size_t i = active[a], j = active[b];
+            const bool targetIsI = bodies[j].fixed && !bodies[i].fixed;
+            pairs.push_back(targetIsI ? BodyPair{j, i} : BodyPair{i, j});
+            if (pairs.size() == kChunk) {
+                addPairWrenches(bodies, pairs, out);
+                pairs.clear();
+            }
+        }
+        addPairWrenches(bodies, pairs, out);
+        std::vector<Wrench> far(tier.size());
+        const auto start = std::chrono::steady_clock::now();
+        const std::uint64_t n = addDipoleFarField(tier, skipFixedPairs, far, farField_);
+        dipoleSumNanoseconds_.fetch_add(
+            std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count(),
+            std::memory_order_relaxed);
+        if (farField_.usesMultipole(tier.size())) multipoleSums_.fetch_add(1, std::memory_order_relaxed);
+        if (n) {
+            dipolePairs_.fetch_add(n, std::memory_order_relaxed);
+            for (std::size_t a = 0; a < tier.size(); ++a) out[active[a]] += far[a];
+        }
     }
 
     // Dipole pairs have centre distance > reach_s + reach_t, reach = k R with
     // k = max(dipoleRatio, 1 + threshold): such a pair is also far by the switch
     // (gap >= k (Rs + Rt) - Rs - Rt >= threshold max(Rs, Rt), and the GJK gap is
     // never below the bounding-sphere gap).
-    double dipoleReach(const Body& b) const override {
+    double dipoleReach(const Body& b) const {
         const double R = b.shape->boundingRadius;
         if (dipoleTolerance_ > 0) return std::max(dipoleReachFor(*b.shape, dipoleTolerance_), (1.0 + threshold_) * R);
         if (dipoleRatio_ <= 0) return std::numeric_limits<double>::infinity();
         return std::max(dipoleRatio_, 1.0 + threshold_) * R;
     }
-    void countDipolePairs(std::uint64_t n) const override { dipolePairs_.fetch_add(n, std::memory_order_relaxed); }
 
     // Decisions so far (pairs).
     std::uint64_t nearCount() const { return nearPairs_; }
@@ -233,7 +283,9 @@ private:
     double threshold_ = 1.0;
     double dipoleRatio_ = 8.0;
     double dipoleTolerance_ = 0;  // > 0: reach from the shapes (dipoleReachFor)
-    mutable std::atomic<std::uint64_t> nearPairs_{0}, farPairs_{0}, dipolePairs_{0}, nearPoints_{0}, farPoints_{0};
+    FarFieldSettings farField_;   // how the dipole pairs are summed
+    mutable std::atomic<std::uint64_t> nearPairs_{0}, farPairs_{0}, dipolePairs_{0}, nearPoints_{0}, farPoints_{0},
+        multipoleSums_{0}, dipoleSumNanoseconds_{0};
 };
 
 const FieldEvaluator::Add<HybridField> addHybrid("hybrid");

@@ -39,7 +39,7 @@ std::vector<Configuration> configurations(const Dict& study) {
         std::snprintf(name, sizeof name, "gap %g cm", gap * 100);
         out.push_back({name, pair, F});
     }
-    // Lateral offset (PHYSICS.md reference point: (5, 0, 12) mm).
+    // Lateral offset (docs/physics.md#reference-values: (5, 0, 12) mm).
     std::vector<Body> offset = {cube("bottom", 0.01, 1.0, Vec3::Zero()), cube("top", 0.01, 1.0, Vec3(0.005, 0, 0.012))};
     out.push_back({"offset (5,0,12) mm", offset, exactCubeForce(offset[0], offset[1])});
     // Rotated and offset: upper cube turned 30 deg about (1, 1, 0).

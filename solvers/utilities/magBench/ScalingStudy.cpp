@@ -11,7 +11,7 @@
 //     fields:                          # label: field (YAML); the CSV's `field` column
 //       ratio8: "{type: hybrid, near: {type: MBM, quadrature: {type: gauss, n: 6}}}"
 //       tolerance1e-3: "{type: hybrid, near: {...}, dipoleTolerance: 1e-3}"
-//     farField: "{method: auto}"       # how dipole pairs are summed (magSchemes farField:)
+//     farField: "{method: auto}"       # how dipole pairs are summed (the hybrid's farField:)
 //     threads: [1, 0]                  # 0 = all cores
 //     minSeconds: 0.05                 # timing per run (at least one call); the best
 //     repeats: 2                       #   of `repeats` runs
@@ -20,14 +20,15 @@
 #include "Studies.hpp"
 #include "ThreadStudies.hpp"
 
-#include <magFoam/DipoleMultipole.hpp>
 #include <magFoam/Error.hpp>
 #include <magFoam/InductionModel.hpp>
 #include <magFoam/Log.hpp>
 #include <magFoam/MagneticSystem.hpp>
 
+#include <yaml-cpp/yaml.h>
+
+#include <limits>
 #include <random>
-#include <regex>
 
 namespace mag::bench {
 
@@ -53,17 +54,44 @@ std::vector<Body> scatteredCubes(int n, double spacing, unsigned seed) {
     return out;
 }
 
-// Pair decisions of one wrenches call, from the hybrid's describe() counters.
+// Pair decisions of one wrenches call, from the hybrid's counters.
 struct PairCounts {
     long nearPairs = -1, farPairs = -1, dipolePairs = -1;
 };
 PairCounts pairCounts(const FieldEvaluator& f) {
-    std::smatch m;
-    const std::string s = f.describe();
-    PairCounts c;
-    if (std::regex_search(s, m, std::regex("dipole pairs ([0-9]+); pairs near ([0-9]+) far ([0-9]+)")))
-        c = {std::stol(m[2]), std::stol(m[3]), std::stol(m[1])};
-    return c;
+    const FieldStats s = f.stats();
+    auto c = [&](const char* name) { return static_cast<long>(s.count(name)); };
+    return {c("nearPairs"), c("farPairs"), c("dipolePairs")};
+}
+
+// The field (YAML) with the hybrid's `farField:` set.
+std::string withFarField(const std::string& field, const std::string& farField, const std::string& where) {
+    YAML::Node n = Dict::fromString(field, where).node();
+    n["farField"] = Dict::fromString(farField, where).node();
+    YAML::Emitter out;
+    out << YAML::Flow << n;
+    return out.c_str();
+}
+
+// Best time per call (s) of the whole wrenches call and of its dipole sum alone
+// (the hybrid's dipoleSumNanoseconds counter), over `repeats` runs of at least
+// minSeconds each.
+struct StepTimes {
+    double step = 0, dipoleSum = 0;
+};
+StepTimes timeStep(const MagneticSystem& system, const std::vector<Body>& bodies, double minSeconds, int repeats) {
+    double bestSum = std::numeric_limits<double>::infinity();
+    auto counter = [&] { return system.fieldEvaluator().stats().count("dipoleSumNanoseconds"); };
+    StepTimes t;
+    t.step = bestSecondsPerCall(
+        [&] {
+            const std::uint64_t before = counter();
+            (void)system.wrenches(bodies, true);
+            bestSum = std::min(bestSum, 1e-9 * static_cast<double>(counter() - before));
+        },
+        minSeconds, repeats);
+    t.dipoleSum = bestSum;
+    return t;
 }
 
 } // namespace
@@ -81,8 +109,7 @@ void scalingStudy(const Dict& study, const std::filesystem::path& caseDir) {
                   {"tolerance1e-3",
                    "{type: hybrid, near: {type: MBM, quadrature: {type: gauss, n: 6}}, dipoleTolerance: 1e-3}"}};
     }
-    const FarFieldSettings farField =
-        FarFieldSettings::read(Dict::fromString(study.get<std::string>("farField", "{}"), study.keyPath("farField")));
+    const std::string farField = study.get<std::string>("farField", "{}");
     const auto counts = threadCounts(study);
     const double minSeconds = study.get<double>("minSeconds", 0.05);
     const int repeats = study.get<int>("repeats", 2);
@@ -96,30 +123,28 @@ void scalingStudy(const Dict& study, const std::filesystem::path& caseDir) {
                        "field,bodies,threads,msPerStep,farFieldMs,directFarFieldMs,dipoleSum,nearPairs,farPairs,dipolePairs");
     for (const auto& [label, field] : fields) {
         spdlog::info("  {}: {}", label, field);
+        const std::string asSet = withFarField(field, farField, study.keyPath("fields." + label));
+        const std::string direct = withFarField(field, "{method: direct}", study.keyPath("fields." + label));
         for (double nd : ns) {
             const int n = static_cast<int>(nd);
             const std::vector<Body> bodies = scatteredCubes(n, spacing, static_cast<unsigned>(seed));
             // Counts from a fresh evaluator's first call; that call also builds the tables.
-            MagneticSystem system(evaluator(field), InductionModel::New(Dict::fromString("type: none\n", "scaling")));
-            system.setFarField(farField);
+            const auto none = [] { return InductionModel::New(Dict::fromString("type: none\n", "scaling")); };
+            MagneticSystem system(evaluator(asSet), none());
             (void)system.wrenches(bodies, true);
             const PairCounts pc = pairCounts(system.fieldEvaluator());
+            const bool multipole = system.fieldEvaluator().stats().count("multipoleSums") > 0;
+            const char* sum = multipole ? "multipole" : "direct";
             // The dipole sum alone (its part of the step; the rest is the near and
             // EDM pairs, found by the grid), as set and by the direct O(N^2) sum.
-            std::vector<FarFieldBody> farBodies;
-            for (const Body& b : bodies) farBodies.push_back(farFieldBody(b, system.fieldEvaluator()));
-            std::vector<Wrench> farWrenches(bodies.size());
-            const char* sum = farField.usesMultipole(farBodies.size()) ? "multipole" : "direct";
+            MagneticSystem directSystem(evaluator(direct), none());
+            if (multipole) (void)directSystem.wrenches(bodies, true);
             for (int t : counts) {
                 setThreads(t);
-                const double ms =
-                    1e3 * bestSecondsPerCall([&] { (void)system.wrenches(bodies, true); }, minSeconds, repeats);
-                const double farMs = 1e3 * bestSecondsPerCall(
-                                               [&] { (void)addDipoleFarField(farBodies, true, farWrenches, farField); },
-                                               minSeconds, repeats);
-                const double directMs = 1e3 * bestSecondsPerCall(
-                                                  [&] { (void)addDipoleFarField(farBodies, true, farWrenches); },
-                                                  minSeconds, repeats);
+                const StepTimes st = timeStep(system, bodies, minSeconds, repeats);
+                const double ms = 1e3 * st.step, farMs = 1e3 * st.dipoleSum;
+                const double directMs =
+                    multipole ? 1e3 * timeStep(directSystem, bodies, minSeconds, repeats).dipoleSum : farMs;
                 csv << label << ',' << n << ',' << t << ',' << ms << ',' << farMs << ',' << directMs << ',' << sum << ','
                     << pc.nearPairs << ',' << pc.farPairs << ',' << pc.dipolePairs << '\n';
                 spdlog::info("  {:<14} N={:<5} threads {}  {:10.4f} ms per step (dipole sum {:.4f}, {}; direct {:.4f})  "

@@ -1,5 +1,5 @@
 // switchError: error and cost of the hybrid evaluator against its switch
-// threshold (a factor of the bounding radius, PHYSICS.md), over the gaps of
+// threshold (a factor of the bounding radius, docs/physics.md#hybrid-switch), over the gaps of
 // the Fig. 4 sweep.
 //
 //   switchError:

@@ -1,4 +1,4 @@
-// magBench: speed-versus-accuracy and stability studies (DESIGN.md §4).
+// magBench: speed-versus-accuracy and stability studies (docs/case-reference.md#benchdict).
 // Reads system/benchDict.yaml of the case, runs the studies it names (or the
 // one given by -study), writes postProcessing/<study>.csv; the case's plot
 // script turns them into PNG charts.

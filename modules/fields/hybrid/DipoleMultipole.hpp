@@ -27,7 +27,7 @@
 // cannot do).
 #pragma once
 
-#include "magFoam/DipoleFarField.hpp"
+#include "DipoleFarField.hpp"
 #include "magFoam/Dictionary.hpp"
 
 #include <cstdint>
@@ -40,7 +40,7 @@ struct MultipoleSettings {
     double theta = 0.5;       // opening angle of the cell pair test
     std::size_t leafSize = 64;  // bodies per leaf cell, at most
     // Cell pairs with at most this many body pairs are summed directly: a
-    // translation at p = 10-12 costs about as much as 150-300 direct pairs.
+    // translation costs about as much as a few hundred direct pairs.
     double directPairs = 300;
 };
 
@@ -49,9 +49,10 @@ struct MultipoleSettings {
 std::uint64_t addDipoleFarFieldMultipole(std::span<const FarFieldBody> bodies, bool skipFixedPairs,
                                          std::span<Wrench> out, const MultipoleSettings& settings = {});
 
-// How MagneticSystem sums the dipole pairs; system/magSchemes.yaml:
-//   farField: {method: auto, multipoleAbove: 3000, order: 12, theta: 0.5, leafSize: 64,
-//              directPairs: 300}
+// How the hybrid evaluator sums its dipole pairs; system/magSchemes.yaml:
+//   field: {type: hybrid, ...,
+//           farField: {method: auto, multipoleAbove: 3000, order: 12, theta: 0.5, leafSize: 64,
+//                      directPairs: 300}}
 // method: direct (all pairs, O(N^2), exact to rounding) | multipole (above) | auto
 // (multipole when more than multipoleAbove bodies take part, else direct).
 struct FarFieldSettings {

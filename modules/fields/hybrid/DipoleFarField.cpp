@@ -1,4 +1,4 @@
-#include "magFoam/DipoleFarField.hpp"
+#include "DipoleFarField.hpp"
 
 #include "magFoam/Threads.hpp"
 
@@ -10,7 +10,7 @@
 #include <limits>
 #include <unordered_map>
 
-// Compiled with -ffp-contract=off (core/CMakeLists.txt): the pair test
+// Compiled with -ffp-contract=off (this module's CMakeLists.txt): the pair test
 // d^2 > (reach_i + reach_j)^2 must round the same in the grid search, in every
 // vector lane of the bulk sum, and for (i, j) as for (j, i), or a pair at the
 // boundary could be counted as both near and far, or as neither. And with
@@ -19,17 +19,15 @@
 
 namespace mag {
 
-using detail::kMu;
-
 Wrench dipolePairWrench(const Vec3& ms, const Vec3& mt, const Vec3& r) {
-    const double inv2 = 1.0 / r.squaredNorm();
-    const double inv3 = inv2 * std::sqrt(inv2);
-    const double msr = ms.dot(r), mtr = mt.dot(r);
-    const Vec3 B = kMu * inv3 * (3.0 * msr * inv2 * r - ms);
+    // The formula of the bulk sums (DipoleBlockSum.hpp), so that both round alike.
+    const double d2 = r.x() * r.x() + r.y() * r.y() + r.z() * r.z();
+    const detail::DipolePairTerms t =
+        detail::dipolePairTerms(r.x(), r.y(), r.z(), ms.x(), ms.y(), ms.z(), mt.x(), mt.y(), mt.z(), 1.0 / d2);
     Wrench w;
-    w.force = 3.0 * kMu * inv3 * inv2 * ((mtr * ms + msr * mt) + ms.dot(mt) * r - 5.0 * msr * mtr * inv2 * r);
-    w.torque = mt.cross(B);
-    w.energy = -mt.dot(B);
+    w.force = Vec3(t.fx, t.fy, t.fz);
+    w.torque = Vec3(t.tx, t.ty, t.tz);
+    w.energy = t.e;
     return w;
 }
 

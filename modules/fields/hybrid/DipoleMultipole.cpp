@@ -1,4 +1,4 @@
-#include "magFoam/DipoleMultipole.hpp"
+#include "DipoleMultipole.hpp"
 
 #include "magFoam/Threads.hpp"
 
@@ -218,45 +218,27 @@ Wrench localWrench(const Cplx* Lb, const Vec3& mt) {
     return w;
 }
 
-} // namespace
+// Cell pairs of the dual-tree walk, grouped by target cell: offset[c] ..
+// offset[c + 1] index the source cells of target c, in walk order.
+struct CellLists {
+    std::vector<std::size_t> offset;
+    std::vector<int> source;
+};
 
-std::uint64_t addDipoleFarFieldMultipole(std::span<const FarFieldBody> bodies, bool skipFixedPairs,
-                                         std::span<Wrench> out, const MultipoleSettings& settings) {
-    const int p = settings.order;
-    const double theta = settings.theta;
-    // Bodies that can be in a dipole pair at all.
-    std::vector<std::size_t> member;
-    std::vector<Vec3> pos;
-    std::vector<double> reach;
-    for (std::size_t i = 0; i < bodies.size(); ++i)
-        if (std::isfinite(bodies[i].reach) && bodies[i].position.allFinite()) {
-            member.push_back(i);
-            pos.push_back(bodies[i].position);
-            reach.push_back(bodies[i].reach);
-        }
-    if (member.size() < 2) return 0;
-    const Tree tree(pos, reach, settings.leafSize);
-    const std::vector<Cell>& cells = tree.cells;
-    const std::size_t nb = member.size(), nc = cells.size();
-    // Bodies in tree order (index k), as arrays for the direct sums.
-    std::vector<std::size_t> body(nb);
-    detail::DipoleArrays a;
-    // Eight spare entries at the end: a leaf's target block is rounded up to whole
-    // vectors (lanes past the leaf compute and are discarded).
-    a.resize(nb + 8);
-    for (std::size_t k = 0; k < nb; ++k) {
-        body[k] = member[tree.order[k]];
-        a.set(k, bodies[body[k]], skipFixedPairs);
-    }
+struct Interactions {
+    std::vector<std::pair<int, int>> m2l;  // (target, source) by translation
+    CellLists byTranslation, direct;
+};
 
-    // The dual-tree walk (serial, so the lists come out in one order): cell pairs
-    // by translation (each way) or, for two leaves, by direct sum.
+// The dual-tree walk (serial, so the lists come out in one order): cell pairs by
+// translation (each way) or, for two leaves and small pairs, by direct sum.
+Interactions walk(const std::vector<Cell>& cells, const MultipoleSettings& settings) {
+    const double theta = settings.theta, directPairs = settings.directPairs;
     auto separated = [&](const Cell& A, const Cell& B) {
         const double d = (A.centre - B.centre).norm();
         // The margin keeps rounding from letting through a pair that isDipolePair() rejects.
         return A.radius + B.radius < theta * d && d - A.radius - B.radius > (A.reach + B.reach) * (1 + 1e-9);
     };
-    const double directPairs = settings.directPairs;
     std::vector<std::pair<int, int>> m2l, p2p;  // (target cell, source cell)
     std::vector<std::pair<int, int>> stack{{0, 0}};
     while (!stack.empty()) {
@@ -286,148 +268,219 @@ std::uint64_t addDipoleFarFieldMultipole(std::span<const FarFieldBody> bodies, b
         }
     }
     // Lists grouped by target, in walk order.
+    const std::size_t nc = cells.size();
     auto group = [&](const std::vector<std::pair<int, int>>& pairs) {
-        std::vector<std::size_t> offset(nc + 1, 0);
-        for (const auto& pr : pairs) ++offset[pr.first + 1];
-        for (std::size_t c = 0; c < nc; ++c) offset[c + 1] += offset[c];
-        std::vector<int> src(pairs.size());
-        std::vector<std::size_t> fill(offset.begin(), offset.end() - 1);
-        for (const auto& pr : pairs) src[fill[pr.first]++] = pr.second;
-        return std::make_pair(std::move(offset), std::move(src));
+        CellLists g;
+        g.offset.assign(nc + 1, 0);
+        for (const auto& pr : pairs) ++g.offset[pr.first + 1];
+        for (std::size_t c = 0; c < nc; ++c) g.offset[c + 1] += g.offset[c];
+        g.source.resize(pairs.size());
+        std::vector<std::size_t> fill(g.offset.begin(), g.offset.end() - 1);
+        for (const auto& pr : pairs) g.source[fill[pr.first]++] = pr.second;
+        return g;
     };
-    const auto [m2lOffset, m2lSource] = group(m2l);
-    const auto [p2pOffset, p2pSource] = group(p2p);
+    Interactions out;
+    out.byTranslation = group(m2l);
+    out.direct = group(p2p);
+    out.m2l = std::move(m2l);
+    return out;
+}
 
-    // Cells by depth: the upward and downward passes run a level at a time.
-    int maxDepth = 0;
-    for (const Cell& c : cells) maxDepth = std::max(maxDepth, c.depth);
-    std::vector<std::vector<int>> level(maxDepth + 1);
-    for (std::size_t c = 0; c < nc; ++c) level[cells[c].depth].push_back(static_cast<int>(c));
+// The expansions of one sum: the tree, its bodies as arrays (tree order), which
+// cells need a multipole or carry a local expansion, and the coefficients.
+struct Expansions {
+    const std::vector<Cell>& cells;
+    const detail::DipoleArrays& a;
+    int p, S;                              // order, coefficients per cell
+    std::vector<std::vector<int>> level;   // cells by depth
+    std::vector<char> needM, hasLocal;
+    std::vector<Cplx> M, L;
+    std::vector<double> pairs;             // dipole pairs counted by translation, per cell
 
-    const int S = size(p);
-    // Cells whose multipole is needed (sources of a translation, and all cells
-    // below them) and cells with a local expansion (targets, and all below).
-    std::vector<char> needM(nc, 0), hasLocal(nc, 0);
-    for (const auto& [t, s] : m2l) needM[s] = 1, hasLocal[t] = 1;
-    for (std::size_t c = 1; c < nc; ++c) {
-        if (needM[cells[c].parent]) needM[c] = 1;
-        if (hasLocal[cells[c].parent]) hasLocal[c] = 1;
+    Expansions(const std::vector<Cell>& c, const detail::DipoleArrays& arrays, int order, const Interactions& in)
+        : cells(c), a(arrays), p(order), S(size(order)) {
+        const std::size_t nc = cells.size();
+        int maxDepth = 0;
+        for (const Cell& x : cells) maxDepth = std::max(maxDepth, x.depth);
+        level.resize(maxDepth + 1);
+        for (std::size_t k = 0; k < nc; ++k) level[cells[k].depth].push_back(static_cast<int>(k));
+        // Cells whose multipole is needed (sources of a translation, and all cells
+        // below them) and cells with a local expansion (targets, and all below).
+        needM.assign(nc, 0), hasLocal.assign(nc, 0);
+        for (const auto& [t, s] : in.m2l) needM[s] = 1, hasLocal[t] = 1;
+        for (std::size_t k = 1; k < nc; ++k) {
+            if (needM[cells[k].parent]) needM[k] = 1;
+            if (hasLocal[cells[k].parent]) hasLocal[k] = 1;
+        }
+        M.assign(nc * S, Cplx{}), L.assign(nc * S, Cplx{});
+        pairs.assign(nc, 0.0);
     }
 
     // Upward: multipoles of leaves from their dipoles, of other cells from children.
-    std::vector<Cplx> M(nc * S), L(nc * S);
-    for (int d = maxDepth; d >= 0; --d)
-        parallelFor(level[d].size(), [&](std::size_t k) {
-            const int ci = level[d][k];
-            const Cell& c = cells[ci];
-            if (!needM[ci]) return;
-            std::vector<Cplx> R(S);
-            Cplx* Mc = &M[ci * S];
-            if (c.leaf()) {
-                for (std::size_t b = c.begin; b < c.end; ++b)
-                    addDipole(Vec3(a.mx[b], a.my[b], a.mz[b]), Vec3(a.x[b], a.y[b], a.z[b]) - c.centre, p, R.data(), Mc);
-            } else {
-                for (int ch = c.firstChild; ch < c.firstChild + c.children; ++ch)
-                    shiftMultipole(&M[ch * S], cells[ch].centre - c.centre, p, R.data(), Mc);
-            }
-            fillNegative(p, Mc);
-        });
+    void upward() {
+        for (int d = static_cast<int>(level.size()) - 1; d >= 0; --d)
+            parallelFor(level[d].size(), [&](std::size_t k) {
+                const int ci = level[d][k];
+                const Cell& c = cells[ci];
+                if (!needM[ci]) return;
+                std::vector<Cplx> R(S);
+                Cplx* Mc = &M[ci * S];
+                if (c.leaf()) {
+                    for (std::size_t b = c.begin; b < c.end; ++b)
+                        addDipole(Vec3(a.mx[b], a.my[b], a.mz[b]), Vec3(a.x[b], a.y[b], a.z[b]) - c.centre, p, R.data(), Mc);
+                } else {
+                    for (int ch = c.firstChild; ch < c.firstChild + c.children; ++ch)
+                        shiftMultipole(&M[ch * S], cells[ch].centre - c.centre, p, R.data(), Mc);
+                }
+                fillNegative(p, Mc);
+            });
+    }
 
-    // Translations into each target cell, then downward: each cell adds its
-    // parent's local expansion; pairs counted alike (bodies of the source cells).
-    std::vector<double> pairs(nc, 0.0);
-    parallelFor(nc, [&](std::size_t t) {
-        if (m2lOffset[t] == m2lOffset[t + 1]) return;
-        std::vector<Cplx> I(S);
-        std::vector<Lanes> Mre(S), Mim(S), Ire(S), Iim(S);
-        for (std::size_t k0 = m2lOffset[t]; k0 < m2lOffset[t + 1]; k0 += kLanes) {
-            for (int q = 0; q < kLanes; ++q) {
-                const std::size_t k = k0 + q;
-                const bool lane = k < m2lOffset[t + 1];
-                if (lane) {
-                    const int si = m2lSource[k];
-                    irregular(cells[t].centre - cells[si].centre, p, I.data());
-                    pairs[t] += static_cast<double>(cells[si].end - cells[si].begin);
+    // Translations into each target cell (kLanes at a time); pairs counted as the
+    // bodies of the source cells.
+    void translate(const CellLists& m2l) {
+        parallelFor(cells.size(), [&](std::size_t t) {
+            if (m2l.offset[t] == m2l.offset[t + 1]) return;
+            std::vector<Cplx> I(S);
+            std::vector<Lanes> Mre(S), Mim(S), Ire(S), Iim(S);
+            for (std::size_t k0 = m2l.offset[t]; k0 < m2l.offset[t + 1]; k0 += kLanes) {
+                for (int q = 0; q < kLanes; ++q) {
+                    const std::size_t k = k0 + q;
+                    const bool lane = k < m2l.offset[t + 1];
+                    if (lane) {
+                        const int si = m2l.source[k];
+                        irregular(cells[t].centre - cells[si].centre, p, I.data());
+                        pairs[t] += static_cast<double>(cells[si].end - cells[si].begin);
+                    }
+                    const Cplx* Ms = lane ? &M[m2l.source[k] * S] : nullptr;
+                    for (int c = 0; c < S; ++c) {
+                        Mre[c][q] = lane ? Ms[c].re : 0.0, Mim[c][q] = lane ? Ms[c].im : 0.0;
+                        Ire[c][q] = lane ? I[c].re : 0.0, Iim[c][q] = lane ? I[c].im : 0.0;
+                    }
                 }
-                const Cplx* Ms = lane ? &M[m2lSource[k] * S] : nullptr;
-                for (int c = 0; c < S; ++c) {
-                    Mre[c][q] = lane ? Ms[c].re : 0.0, Mim[c][q] = lane ? Ms[c].im : 0.0;
-                    Ire[c][q] = lane ? I[c].re : 0.0, Iim[c][q] = lane ? I[c].im : 0.0;
-                }
+                multipoleToLocal(Mre.data(), Mim.data(), Ire.data(), Iim.data(), p, &L[t * S]);
             }
-            multipoleToLocal(Mre.data(), Mim.data(), Ire.data(), Iim.data(), p, &L[t * S]);
+        });
+    }
+
+    // Downward: each cell adds its parent's local expansion (and its pair count).
+    void downward() {
+        for (std::size_t d = 1; d < level.size(); ++d) {
+            parallelFor(level[d - 1].size(), [&](std::size_t k) {
+                if (hasLocal[level[d - 1][k]]) fillNegative(p, &L[level[d - 1][k] * S]);
+            });
+            parallelFor(level[d].size(), [&](std::size_t k) {
+                const int ci = level[d][k];
+                const Cell& c = cells[ci];
+                if (!hasLocal[c.parent]) return;
+                std::vector<Cplx> R(S);
+                shiftLocal(&L[c.parent * S], c.centre - cells[c.parent].centre, p, p, R.data(), &L[ci * S]);
+                pairs[ci] += pairs[c.parent];
+            });
         }
-    });
-    for (int d = 1; d <= maxDepth; ++d) {
-        parallelFor(level[d - 1].size(), [&](std::size_t k) {
-            if (hasLocal[level[d - 1][k]]) fillNegative(p, &L[level[d - 1][k] * S]);
-        });
-        parallelFor(level[d].size(), [&](std::size_t k) {
-            const int ci = level[d][k];
-            const Cell& c = cells[ci];
-            if (!hasLocal[c.parent]) return;
-            std::vector<Cplx> R(S);
-            shiftLocal(&L[c.parent * S], c.centre - cells[c.parent].centre, p, p, R.data(), &L[ci * S]);
-            pairs[ci] += pairs[c.parent];
-        });
     }
 
     // Leaves: local expansion at each body, plus the direct sums with the
-    // neighbouring leaves (target blocks of at most kBlock bodies).
-    std::vector<double> bodyPairs(nb, 0.0);
-    std::vector<int> leaves;
-    for (std::size_t c = 0; c < nc; ++c)
-        if (cells[c].leaf()) leaves.push_back(static_cast<int>(c));
-    parallelFor(leaves.size(), [&](std::size_t li) {
-        const int ci = leaves[li];
-        const Cell& c = cells[ci];
-        std::vector<Cplx> R(S), Lb(size(2));
-        // Direct pairs of this leaf and of the cells above it.
-        std::vector<detail::SourceRange> ranges;
-        for (int up = ci; up >= 0; up = cells[up].parent)
-            for (std::size_t k = p2pOffset[up]; k < p2pOffset[up + 1]; ++k)
-                ranges.emplace_back(cells[p2pSource[k]].begin, cells[p2pSource[k]].end);
-        if (hasLocal[ci]) fillNegative(p, &L[ci * S]);
-        for (std::size_t i0 = c.begin; i0 < c.end; i0 += detail::kBlock) {
-            const std::size_t m = std::min(detail::kBlock, c.end - i0);
-            detail::BlockSums sums;
-            detail::sumBlock(a, i0, std::min(detail::kBlock, (m + 7) / 8 * 8), a, ranges, sums);
-            for (std::size_t k = 0; k < m; ++k) {
-                const std::size_t b = i0 + k;
-                Wrench w;
-                if (hasLocal[ci]) {
-                    std::fill(Lb.begin(), Lb.end(), Cplx{});
-                    shiftLocal(&L[ci * S], Vec3(a.x[b], a.y[b], a.z[b]) - c.centre, p, 2, R.data(), Lb.data());
-                    w = localWrench(Lb.data(), Vec3(a.mx[b], a.my[b], a.mz[b]));
+    // neighbouring leaves (target blocks of at most kBlock bodies). Adds the
+    // wrenches of movable bodies to out[body[k]] and counts each body's pairs.
+    void leaves(const CellLists& direct, const std::vector<std::size_t>& body, std::span<Wrench> out,
+                std::vector<double>& bodyPairs) {
+        std::vector<int> leafCells;
+        for (std::size_t c = 0; c < cells.size(); ++c)
+            if (cells[c].leaf()) leafCells.push_back(static_cast<int>(c));
+        parallelFor(leafCells.size(), [&](std::size_t li) {
+            const int ci = leafCells[li];
+            const Cell& c = cells[ci];
+            std::vector<Cplx> R(S), Lb(size(2));
+            // Direct pairs of this leaf and of the cells above it.
+            std::vector<detail::SourceRange> ranges;
+            for (int up = ci; up >= 0; up = cells[up].parent)
+                for (std::size_t k = direct.offset[up]; k < direct.offset[up + 1]; ++k)
+                    ranges.emplace_back(cells[direct.source[k]].begin, cells[direct.source[k]].end);
+            if (hasLocal[ci]) fillNegative(p, &L[ci * S]);
+            for (std::size_t i0 = c.begin; i0 < c.end; i0 += detail::kBlock) {
+                const std::size_t m = std::min(detail::kBlock, c.end - i0);
+                detail::BlockSums sums;
+                detail::sumBlock(a, i0, std::min(detail::kBlock, (m + 7) / 8 * 8), a, ranges, sums);
+                for (std::size_t k = 0; k < m; ++k) {
+                    const std::size_t b = i0 + k;
+                    Wrench w;
+                    if (hasLocal[ci]) {
+                        std::fill(Lb.begin(), Lb.end(), Cplx{});
+                        shiftLocal(&L[ci * S], Vec3(a.x[b], a.y[b], a.z[b]) - c.centre, p, 2, R.data(), Lb.data());
+                        w = localWrench(Lb.data(), Vec3(a.mx[b], a.my[b], a.mz[b]));
+                    }
+                    w += sums.wrench(k);
+                    bodyPairs[b] = pairs[ci] + sums.c[k];
+                    if (a.fixed[b] == 0.0) out[body[b]] += w;
                 }
-                w += sums.wrench(k);
-                bodyPairs[b] = pairs[ci] + sums.c[k];
-                if (a.fixed[b] == 0.0) out[body[b]] += w;
-            }
-        }
-    });
-
-    // Fixed bodies (with skipFixedPairs): a direct sum over all bodies, where the
-    // pair test leaves out the other fixed ones.
-    std::vector<std::size_t> fixedK;
-    for (std::size_t k = 0; k < nb; ++k)
-        if (a.fixed[k] != 0.0) fixedK.push_back(k);
-    if (!fixedK.empty()) {
-        detail::DipoleArrays f;
-        f.resize(fixedK.size());
-        for (std::size_t q = 0; q < fixedK.size(); ++q) f.set(q, bodies[body[fixedK[q]]], skipFixedPairs);
-        const std::size_t nBlocks = (fixedK.size() + detail::kBlock - 1) / detail::kBlock;
-        parallelFor(nBlocks, [&](std::size_t blk) {
-            const std::size_t i0 = blk * detail::kBlock, m = std::min(detail::kBlock, fixedK.size() - i0);
-            detail::BlockSums sums;
-            const detail::SourceRange all{0, nb};
-            detail::sumBlock(f, i0, m, a, {&all, 1}, sums);
-            for (std::size_t k = 0; k < m; ++k) {
-                out[body[fixedK[i0 + k]]] += sums.wrench(k);
-                bodyPairs[fixedK[i0 + k]] = sums.c[k];
             }
         });
     }
+};
+
+// Fixed bodies (with skipFixedPairs): a direct sum over all bodies, where the
+// pair test leaves out the other fixed ones.
+void addFixedBodies(std::span<const FarFieldBody> bodies, bool skipFixedPairs, const detail::DipoleArrays& a,
+                    const std::vector<std::size_t>& body, std::span<Wrench> out, std::vector<double>& bodyPairs) {
+    const std::size_t nb = body.size();
+    std::vector<std::size_t> fixedK;
+    for (std::size_t k = 0; k < nb; ++k)
+        if (a.fixed[k] != 0.0) fixedK.push_back(k);
+    if (fixedK.empty()) return;
+    detail::DipoleArrays f;
+    f.resize(fixedK.size());
+    for (std::size_t q = 0; q < fixedK.size(); ++q) f.set(q, bodies[body[fixedK[q]]], skipFixedPairs);
+    const std::size_t nBlocks = (fixedK.size() + detail::kBlock - 1) / detail::kBlock;
+    parallelFor(nBlocks, [&](std::size_t blk) {
+        const std::size_t i0 = blk * detail::kBlock, m = std::min(detail::kBlock, fixedK.size() - i0);
+        detail::BlockSums sums;
+        const detail::SourceRange all{0, nb};
+        detail::sumBlock(f, i0, m, a, {&all, 1}, sums);
+        for (std::size_t k = 0; k < m; ++k) {
+            out[body[fixedK[i0 + k]]] += sums.wrench(k);
+            bodyPairs[fixedK[i0 + k]] = sums.c[k];
+        }
+    });
+}
+
+} // namespace
+
+std::uint64_t addDipoleFarFieldMultipole(std::span<const FarFieldBody> bodies, bool skipFixedPairs,
+                                         std::span<Wrench> out, const MultipoleSettings& settings) {
+    // Bodies that can be in a dipole pair at all.
+    std::vector<std::size_t> member;
+    std::vector<Vec3> pos;
+    std::vector<double> reach;
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+        if (std::isfinite(bodies[i].reach) && bodies[i].position.allFinite()) {
+            member.push_back(i);
+            pos.push_back(bodies[i].position);
+            reach.push_back(bodies[i].reach);
+        }
+    if (member.size() < 2) return 0;
+    const Tree tree(pos, reach, settings.leafSize);
+    const std::size_t nb = member.size();
+    // Bodies in tree order (index k), as arrays for the direct sums.
+    std::vector<std::size_t> body(nb);
+    detail::DipoleArrays a;
+    // Eight spare entries at the end: a leaf's target block is rounded up to whole
+    // vectors (lanes past the leaf compute and are discarded).
+    a.resize(nb + 8);
+    for (std::size_t k = 0; k < nb; ++k) {
+        body[k] = member[tree.order[k]];
+        a.set(k, bodies[body[k]], skipFixedPairs);
+    }
+
+    const Interactions lists = walk(tree.cells, settings);
+    Expansions e(tree.cells, a, settings.order, lists);
+    e.upward();
+    e.translate(lists.byTranslation);
+    e.downward();
+    std::vector<double> bodyPairs(nb, 0.0);
+    e.leaves(lists.direct, body, out, bodyPairs);
+    addFixedBodies(bodies, skipFixedPairs, a, body, out, bodyPairs);
+
     double total = 0;
     for (double v : bodyPairs) total += v;
     return static_cast<std::uint64_t>(total / 2 + 0.5);  // each pair seen from both ends

@@ -1,22 +1,23 @@
 // Far field of a scene: pairs of bodies far apart against their size interact as
 // two point dipoles m = M V at their centres of mass (corrected Eq. 5, Eq. 6).
-// The field evaluator says how far is far (FieldEvaluator::dipoleReach: a pair is
-// a dipole pair when |c_i - c_j| > reach_i + reach_j); MagneticSystem evaluates
-// all such pairs here, in bulk, and only the others pair by pair.
+// The hybrid evaluator says how far is far (its dipole reach: a pair is a dipole
+// pair when |c_i - c_j| > reach_i + reach_j); it evaluates all such pairs here,
+// in bulk, and only the others pair by pair.
 //
-// Cost. The bulk sum visits every (target, source) pair once: O(N^2) at a few ns a
-// pair (structure of arrays, one vector lane per target), against ~0.1 us for a
-// dipole pair through the per-pair interface. Near pairs are found by a uniform
+// Cost. The bulk sum visits every (target, source) pair once: O(N^2), but far
+// cheaper per pair than the per-pair interface (structure of arrays, one vector
+// lane per target; timings: cases/benchmarks). Near pairs are found by a uniform
 // grid (NearPairs), so they cost O(N) to find. Past a few thousand bodies the
 // fast multipole sum of the same pairs (DipoleMultipole.hpp, O(N)) is faster;
-// MagneticSystem picks one by the magSchemes `farField:` setting.
+// the hybrid picks one by its `farField:` setting.
 //
 // Accuracy: that of the dipole approximation (see the hybrid evaluator: relative
 // O((R/d)^2), O((R/d)^4) for bodies with isotropic second moments); the bulk sum
 // equals dipolePairWrench() to rounding (tests/test_dipoleFarField.cpp).
 #pragma once
 
-#include "magFoam/FieldEvaluator.hpp"
+#include "magFoam/Body.hpp"
+#include "magFoam/Wrench.hpp"
 
 #include <cstdint>
 #include <span>
@@ -40,10 +41,11 @@ Wrench dipolePairWrench(const Vec3& ms, const Vec3& mt, const Vec3& r);
 //   eps(d) = c2 (q_s + q_t) / d^2 + c4 ((R_s + R_t) / d)^4,   q = |Q|_F / V (m^2),
 // bounding |dF| / (3 mu0 |m_s||m_t| / (4 pi d^4)) and |dT| / (3 mu0 |m_s||m_t| /
 // (4 pi d^3)) (the errors of force and torque against the scale of a dipole pair's
-// force and torque at d). c2 = 12, c4 = 0.3: the largest ratios measured over
-// random orientations of cubes, 3:1 bars, 20:20:3 plates, 10:1 rods and spheres,
-// d = 2..16 (R_s + R_t), against MBM, were 7.0 and 0.18 (tests/test_farField.cpp,
-// report); the test checks the bound on other random orientations.
+// force and torque at d). c2 = 12, c4 = 0.3 lie above the largest ratios of the
+// error to each term measured against MBM over random orientations of cubes, 3:1
+// bars, 20:20:3 plates, 10:1 rods and spheres at d = 2..16 (R_s + R_t); the test
+// "dipole tier: the moment estimate bounds the error for any shape and
+// orientation" (tests/test_farField.cpp) checks the bound on other orientations.
 double shapeQuadrupole(const Shape& shape);  // q = |Q|_F / V, m^2
 double dipoleErrorEstimate(const Shape& source, const Shape& target, double distance);
 // The reach for tolerance tol: pairs with d > reach_s + reach_t have eps(d) <= tol,
@@ -59,9 +61,9 @@ struct FarFieldBody {
     bool fixed;
 };
 
-// A body as the far field sees it, its reach from the field evaluator.
-inline FarFieldBody farFieldBody(const Body& b, const FieldEvaluator& field) {
-    return {b.position, b.magneticMoment(), field.dipoleReach(b), b.fixed};
+// A body as the far field sees it, with the reach the evaluator gives it.
+inline FarFieldBody farFieldBody(const Body& b, double reach) {
+    return {b.position, b.magneticMoment(), reach, b.fixed};
 }
 
 // The pair test: |c_a - c_b|^2 > (reach_a + reach_b)^2, rounded the same for (a, b)

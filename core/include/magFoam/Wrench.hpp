@@ -1,0 +1,24 @@
+// Wrench: what one body exerts on another (or the sum over all others), in one
+// type for every model. `torque` is the magnetic torque (paper Eq. 17, or a
+// model's counterpart), `mechanicalTorque` the torque of the force density about
+// the target's centre of mass (Eq. 18); the body turns under their sum.
+#pragma once
+
+#include "magFoam/Types.hpp"
+
+namespace mag {
+
+struct Wrench {
+    Vec3 force = Vec3::Zero();            // N (Eq. 16)
+    Vec3 torque = Vec3::Zero();           // magnetic torque, N m (Eq. 17)
+    Vec3 mechanicalTorque = Vec3::Zero(); // about the target's centre of mass, N m (Eq. 18)
+    double energy = 0;                    // interaction energy, J (the model's own)
+
+    Vec3 totalTorque() const { return torque + mechanicalTorque; }
+    Wrench& operator+=(const Wrench& o) {
+        force += o.force, torque += o.torque, mechanicalTorque += o.mechanicalTorque, energy += o.energy;
+        return *this;
+    }
+};
+
+} // namespace mag

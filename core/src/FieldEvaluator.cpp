@@ -1,0 +1,56 @@
+#include "magFoam/FieldEvaluator.hpp"
+
+#include "magFoam/Threads.hpp"
+
+#include <algorithm>
+
+namespace mag {
+
+void FieldEvaluator::addWrenches(std::span<const Body> bodies, std::span<const std::size_t> active,
+                                 bool skipFixedPairs, std::span<Wrench> out) const {
+    // Every pair (i < j) of the active bodies. The body that moves is sampled
+    // (a fixed body needs no wrench of its own); otherwise the one listed later.
+    // Pairs go in chunks: they bound the memory of large scenes (5 MB, not 80
+    // bytes per pair) without changing any sum's order.
+    constexpr std::size_t kChunk = 65536;
+    std::vector<BodyPair> pairs;
+    for (std::size_t a = 0; a < active.size(); ++a)
+        for (std::size_t b = a + 1; b < active.size(); ++b) {
+            const std::size_t i = active[a], j = active[b];
+            if (skipFixedPairs && bodies[i].fixed && bodies[j].fixed) continue;
+            const bool targetIsI = bodies[j].fixed && !bodies[i].fixed;
+            pairs.push_back(targetIsI ? BodyPair{j, i} : BodyPair{i, j});
+            if (pairs.size() == kChunk) {
+                addPairWrenches(bodies, pairs, out);
+                pairs.clear();
+            }
+        }
+    addPairWrenches(bodies, pairs, out);
+}
+
+void FieldEvaluator::addPairWrenches(std::span<const Body> bodies, std::span<const BodyPair> pairs,
+                                     std::span<Wrench> out) const {
+    std::vector<Wrench> perPair(pairs.size());
+    auto evaluate = [&](std::size_t k) { perPair[k] = interaction(bodies[pairs[k].source], bodies[pairs[k].target]); };
+    // Many pairs: in parallel, handed out in runs (cheap pairs at well under a
+    // microsecond must not each take the shared loop counter). Few: one after
+    // another, so that an evaluator's own parallel loop (over a pair's samples)
+    // gets the threads. Either way each pair's result is the same, bit for bit.
+    const auto nThreads = static_cast<std::size_t>(threads());
+    if (pairs.size() >= 2 * nThreads)
+        parallelFor(pairs.size(), evaluate, std::max<std::size_t>(1, pairs.size() / (64 * nThreads)));
+    else
+        for (std::size_t k = 0; k < pairs.size(); ++k) evaluate(k);
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+        const std::size_t s = pairs[k].source, t = pairs[k].target;
+        const Wrench& w = perPair[k];
+        out[t] += w;
+        Wrench r;
+        r.force = -w.force;
+        r.torque = -w.totalTorque() - (bodies[t].position - bodies[s].position).cross(w.force);
+        r.energy = w.energy;
+        out[s] += r;
+    }
+}
+
+} // namespace mag
