@@ -1,6 +1,7 @@
-// A rigid magnetic body: an immutable shape (mesh in the body frame, origin at
-// the centre of mass, plus mass properties) shared by every body built from the
-// same geometry, and the per-step state (pose, velocities, magnetization).
+// A rigid magnetic body: its fixed model (name, material, an immutable shape
+// shared by every body built from the same geometry: mesh in the body frame,
+// origin at the centre of mass, mass properties) and its per-step state (pose,
+// velocities, magnetization).
 #pragma once
 
 #include "magFoam/Material.hpp"
@@ -32,33 +33,49 @@ struct Shape {
     double boundingRadius = 0; // max vertex distance from the COM
 };
 
-struct Body {
+// What a body is, fixed for a run: read from the case, shared by the models.
+struct BodyModel {
     std::string name;
     std::shared_ptr<const Shape> shape;
     Material material;
     bool fixed = false;
 
+    double mass() const { return material.density * shape->volume; }
+    Mat3 inertiaBody() const { return material.density * shape->unitInertia; }
+    bool soft() const { return material.soft(); }
+};
+
+// Where a body is and how it moves and is magnetized: the per-step state that
+// the solver owns, writes to each time folder (<time>/bodies.yaml) and reads
+// back on restart. Models keep their own extra state (InductionModel,
+// RigidBodyBackend) and write it beside it.
+struct BodyState {
     // Magnetization in the BODY frame, A/m. Permanent: Br/mu0 along the given
     // direction; soft: the induced value (carried with the body between steps).
     Vec3 magnetizationBody = Vec3::Zero();
 
-    // State (world frame): centre of mass, orientation body->world, velocities.
+    // World frame: centre of mass, orientation body->world, velocities.
     Vec3 position = Vec3::Zero();
     Quat orientation = Quat::Identity();
     Vec3 velocity = Vec3::Zero();
     Vec3 angularVelocity = Vec3::Zero();
 
-    double mass() const { return material.density * shape->volume; }
-    Mat3 inertiaBody() const { return material.density * shape->unitInertia; }
+    Vec3 magnetization() const { return orientation * magnetizationBody; }  // world, A/m
+    Vec3 toWorld(const Vec3& pBody) const { return orientation * pBody + position; }
+    Vec3 toBody(const Vec3& pWorld) const { return orientation.conjugate() * (pWorld - position); }
+};
+
+// A body as the models see it in a step: its model and its current state.
+struct Body : BodyModel, BodyState {
+    BodyState& state() { return *this; }
+    const BodyState& state() const { return *this; }
+    const BodyModel& model() const { return *this; }
+
     Mat3 inertiaWorld() const {
         const Mat3 R = orientation.toRotationMatrix();
         return R * inertiaBody() * R.transpose();
     }
-    Vec3 magnetization() const { return orientation * magnetizationBody; }  // world, A/m
     Vec3 magneticMoment() const { return magnetization() * shape->volume; } // A m^2
-    Vec3 toWorld(const Vec3& pBody) const { return orientation * pBody + position; }
-    Vec3 toBody(const Vec3& pWorld) const { return orientation.conjugate() * (pWorld - position); }
-    bool soft() const { return material.soft(); }
 };
 
 } // namespace mag
