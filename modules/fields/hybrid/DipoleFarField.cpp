@@ -31,6 +31,8 @@ Wrench dipolePairWrench(const Vec3& ms, const Vec3& mt, const Vec3& r) {
     return w;
 }
 
+FarFieldBody farFieldBody(const Body& b, double reach) { return {b.position, b.magneticMoment(), reach, b.fixed}; }
+
 namespace {
 constexpr double kC2 = 12.0, kC4 = 0.3;  // see the header
 }

@@ -61,10 +61,10 @@ struct FarFieldBody {
     bool fixed;
 };
 
-// A body as the far field sees it, with the reach the evaluator gives it.
-inline FarFieldBody farFieldBody(const Body& b, double reach) {
-    return {b.position, b.magneticMoment(), reach, b.fixed};
-}
+// A body as the far field sees it, with the reach the evaluator gives it. Out of
+// line, in this kernel's contraction-free code: the moment M V rotated into the
+// world rounds the same wherever the evaluator calls it from.
+FarFieldBody farFieldBody(const Body& b, double reach);
 
 // The pair test: |c_a - c_b|^2 > (reach_a + reach_b)^2, rounded the same for (a, b)
 // and (b, a) and in the bulk sum.
