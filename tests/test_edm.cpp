@@ -1,9 +1,9 @@
 // Tests of the EDM field evaluator (modules/fields/EDM, paper Sec. 3, Eqs. 1, 5, 6),
 // selected by name like an app does. Independent references only:
-//   - exact dipole-dipole force/torque/field (tests/oracles/dipole.hpp): a uniformly
+//   - exact dipole-dipole force/torque/field (reference/oracles/dipole.hpp): a uniformly
 //     magnetized sphere IS a dipole outside, so the sphere fast path must match it to
 //     rounding;
-//   - the Akoun-Yonnet closed-form force between cuboids (tests/oracles/akounYonnet.hpp)
+//   - the Akoun-Yonnet closed-form force between cuboids (reference/oracles/akounYonnet.hpp)
 //     for the grid sampling and its convergence order;
 //   - conservation laws (Newton's third law, angular momentum) and curl A = B.
 #include <catch2/catch.hpp>

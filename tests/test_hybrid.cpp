@@ -1,6 +1,6 @@
 // Tests of the hybrid field evaluator (modules/fields/hybrid, paper Sec. 5 and
 // Algorithm 1) and of its GJK distance, against independent references:
-//   - the Akoun-Yonnet closed-form force (tests/oracles/akounYonnet.hpp) for the
+//   - the Akoun-Yonnet closed-form force (reference/oracles/akounYonnet.hpp) for the
 //     defaults on the paper's Fig. 4 cubes;
 //   - the pure near/far evaluators, selected by name, for the switch decisions;
 //   - a brute-force polytope distance (all vertex-triangle and edge-edge pairs) for GJK.

@@ -2,8 +2,8 @@
 // (modules/fields/MBM: PolyhedronTables, PolyhedronField; paper Eqs. 9-15).
 // Every check is against an independent reference: brute-force quadrature of the face
 // integrals, finite-difference identities (curl A = B, div B = 0, H = -grad phi), the
-// closed-form cuboid field (tests/oracles/cuboidField.hpp), the uniformly magnetized
-// sphere / dipole (tests/oracles/dipole.hpp), and exact solid-angle values.
+// closed-form cuboid field (reference/oracles/cuboidField.hpp), the uniformly magnetized
+// sphere / dipole (reference/oracles/dipole.hpp), and exact solid-angle values.
 #include <catch2/catch.hpp>
 
 #include "PolyhedronField.hpp"

@@ -1,9 +1,9 @@
 // Tests of the MBM boundary quadrature and interaction wrench (modules/fields/MBM:
 // SurfaceQuadrature, InteractionWrench; paper Sec. 4.2, Eqs. 16-18, Fig. 5).
 // References are independent of the kernel: the Akoun-Yonnet closed form and its
-// Amperian counterpart (tests/oracles/akounYonnet.hpp), the closed-form cuboid field
+// Amperian counterpart (reference/oracles/akounYonnet.hpp), the closed-form cuboid field
 // integrated by brute-force split/graded Gauss quadrature over the target's volume or
-// surface (tests/oracles/cuboidField.hpp), published values (docs/physics.md#reference-values), and the
+// surface (reference/oracles/cuboidField.hpp), published values (docs/physics.md#reference-values), and the
 // conservation laws (Newton's third law, F = -grad U, T = -dU/dtheta).
 #include <catch2/catch.hpp>
 

@@ -1,4 +1,4 @@
-// Tests of the independent oracles in tests/oracles/ against the reference values
+// Tests of the independent oracles in reference/oracles/ against the reference values
 // of docs/physics.md#reference-values, against classical closed forms, against brute-force quadrature and against
 // each other. The oracles are then used to test the production code.
 #include <catch2/catch.hpp>
