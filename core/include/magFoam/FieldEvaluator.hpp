@@ -80,11 +80,6 @@ public:
     // logs, tests and benchmarks; the default has none.
     virtual FieldStats stats() const { return {}; }
 
-    // Boundary quadrature samples that interaction() takes on a target of this
-    // shape (cost reports: magBench's table1, table2); 0, the default, where the
-    // model samples no boundary.
-    virtual std::size_t boundarySamples(const Shape&) const { return 0; }
-
     // Registry and selection by `type`.
     using Registry = mag::Registry<FieldEvaluator>;
     static Registry& registry();

@@ -29,6 +29,8 @@
 #include <magFoam/Threads.hpp>
 
 #include <algorithm>
+#include <atomic>
+#include <cstdint>
 #include <map>
 #include <mutex>
 
@@ -86,6 +88,7 @@ public:
         // runs on all threads with bit-identical results. The workers read the
         // calling thread's sample buffers; each has its own field scratch.
         const std::size_t n = points.size();
+        samples_.fetch_add(n, std::memory_order_relaxed);
         const std::size_t blocks = (n + kSampleBlock - 1) / kSampleBlock;
         const std::span<const Vec3> P(points), N(normals);
         const std::span<const double> W(tgt.samples.weights);
@@ -120,9 +123,12 @@ public:
         return "MBM (quadrature " + ruleName_ + " n=" + std::to_string(n_) + ", overlap " + overlapName_ + ")";
     }
 
-    std::size_t boundarySamples(const Shape& shape) const override {
-        const mbm::PolyhedronTables tables(shape.mesh.vertices, shape.mesh.triangles);
-        return mbm::buildSurfaceQuadrature(tables, rule_, n_).size();
+    // boundarySamples: the target samples taken by interaction() so far (cost
+    // reports, e.g. magBench's table1 and table2).
+    FieldStats stats() const override {
+        FieldStats s;
+        s.add("boundarySamples", samples_.load(std::memory_order_relaxed));
+        return s;
     }
 
 private:
@@ -155,6 +161,7 @@ private:
     int n_ = 10;
     mbm::OverlapModel overlap_ = mbm::OverlapModel::charge;
     mutable std::mutex mutex_;
+    mutable std::atomic<std::uint64_t> samples_{0};
     struct CacheEntry {
         std::weak_ptr<const Shape> shape;
         std::unique_ptr<const ShapeData> data;

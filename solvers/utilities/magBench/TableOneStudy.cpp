@@ -43,7 +43,7 @@ void tableOneStudy(const Dict& study, const std::filesystem::path& caseDir) {
         std::vector<Body> bodies = c.bodies();
         std::size_t samples = 0;  // on the sampled (moving) body of each pair
         for (const Body& b : bodies)
-            if (!b.fixed) samples += mbmSamples(Dict::fromString(yaml, "table1"), *b.shape);
+            if (!b.fixed) samples += boundarySamples(Dict::fromString(yaml, "table1"), b.shape);
         const double paperMs = paper.empty() ? 0.0 : paper[i];
         for (int t : counts) {
             setThreads(t);

@@ -44,7 +44,7 @@ void tableTwoStudy(const Dict& study, const std::filesystem::path& caseDir) {
         std::size_t samples = 0;
         std::string perBody;
         for (const Body& b : c.bodies()) {
-            const std::size_t n = mbmSamples(c.fieldDict(), *b.shape);
+            const std::size_t n = boundarySamples(c.fieldDict(), b.shape);
             samples += n;
             if (!perBody.empty()) perBody += ' ';
             perBody += std::to_string(n);
