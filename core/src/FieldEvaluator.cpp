@@ -8,24 +8,25 @@ namespace mag {
 
 void FieldEvaluator::addWrenches(std::span<const Body> bodies, std::span<const std::size_t> active,
                                  bool skipFixedPairs, std::span<Wrench> out) const {
-    // Every pair (i < j) of the active bodies. The body that moves is sampled
-    // (a fixed body needs no wrench of its own); otherwise the one listed later.
-    // Pairs go in chunks: they bound the memory of large scenes (5 MB, not 80
-    // bytes per pair) without changing any sum's order.
-    constexpr std::size_t kChunk = 65536;
-    std::vector<BodyPair> pairs;
+    // Every pair (i < j) of the active bodies.
+    PairChunks pairs(*this, bodies, out);
     for (std::size_t a = 0; a < active.size(); ++a)
         for (std::size_t b = a + 1; b < active.size(); ++b) {
             const std::size_t i = active[a], j = active[b];
-            if (skipFixedPairs && bodies[i].fixed && bodies[j].fixed) continue;
-            const bool targetIsI = bodies[j].fixed && !bodies[i].fixed;
-            pairs.push_back(targetIsI ? BodyPair{j, i} : BodyPair{i, j});
-            if (pairs.size() == kChunk) {
-                addPairWrenches(bodies, pairs, out);
-                pairs.clear();
-            }
+            if (!(skipFixedPairs && bodies[i].fixed && bodies[j].fixed)) pairs.add(i, j);
         }
-    addPairWrenches(bodies, pairs, out);
+    pairs.finish();
+}
+
+void FieldEvaluator::PairChunks::add(std::size_t i, std::size_t j) {
+    const bool targetIsI = bodies_[j].fixed && !bodies_[i].fixed;
+    pairs_.push_back(targetIsI ? BodyPair{j, i} : BodyPair{i, j});
+    if (pairs_.size() == kChunk) finish();
+}
+
+void FieldEvaluator::PairChunks::finish() {
+    f_.addPairWrenches(bodies_, pairs_, out_);
+    pairs_.clear();
 }
 
 void FieldEvaluator::addPairWrenches(std::span<const Body> bodies, std::span<const BodyPair> pairs,

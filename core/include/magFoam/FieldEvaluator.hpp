@@ -100,6 +100,25 @@ protected:
     // run on the worker threads (Threads.hpp) into per-pair slots that are
     // summed in pair order: bit-identical for any thread count.
     void addPairWrenches(std::span<const Body> bodies, std::span<const BodyPair> pairs, std::span<Wrench> out) const;
+
+    // Pairs (i, j) collected in chunks for addPairWrenches: each is oriented so
+    // that the body that moves is sampled (a fixed body needs no wrench of its
+    // own), otherwise j; a chunk bounds the memory of large scenes without
+    // changing any sum's order. finish() evaluates what is left.
+    class PairChunks {
+    public:
+        PairChunks(const FieldEvaluator& f, std::span<const Body> bodies, std::span<Wrench> out)
+            : f_(f), bodies_(bodies), out_(out) {}
+        void add(std::size_t i, std::size_t j);
+        void finish();
+
+    private:
+        static constexpr std::size_t kChunk = 65536;
+        const FieldEvaluator& f_;
+        std::span<const Body> bodies_;
+        std::span<Wrench> out_;
+        std::vector<BodyPair> pairs_;
+    };
 };
 
 } // namespace mag

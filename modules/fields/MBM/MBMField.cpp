@@ -88,7 +88,6 @@ public:
         // runs on all threads with bit-identical results. The workers read the
         // calling thread's sample buffers; each has its own field scratch.
         const std::size_t n = points.size();
-        samples_.fetch_add(n, std::memory_order_relaxed);
         const std::size_t blocks = (n + kSampleBlock - 1) / kSampleBlock;
         const std::span<const Vec3> P(points), N(normals);
         const std::span<const double> W(tgt.samples.weights);
@@ -116,6 +115,9 @@ public:
         out.torque = source.orientation * w.torque;
         out.mechanicalTorque = source.orientation * w.mechanicalTorque;
         out.energy = w.energy;
+        // Counted last: an atomic in the middle changes how the compiler fuses
+        // the multiply-adds of the sample transform, and so the result's last bits.
+        samples_.fetch_add(n, std::memory_order_relaxed);
         return out;
     }
 

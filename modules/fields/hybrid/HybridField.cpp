@@ -221,20 +221,9 @@ public:
         std::vector<FarFieldBody> tier;
         tier.reserve(active.size());
         for (std::size_t i : active) tier.push_back(farFieldBody(bodies[i], dipoleReach(bodies[i])));
-        // Sample the body that moves (a fixed body needs no wrench); otherwise the
-        // one listed later. Chunks bound the memory of large scenes.
-        constexpr std::size_t kChunk = 65536;
-        std::vector<BodyPair> pairs;
-        for (const auto& [a, b] : nearPairs(tier, skipFixedPairs)) {
-            const std::size_t i = active[a], j = active[b];
-            const bool targetIsI = bodies[j].fixed && !bodies[i].fixed;
-            pairs.push_back(targetIsI ? BodyPair{j, i} : BodyPair{i, j});
-            if (pairs.size() == kChunk) {
-                addPairWrenches(bodies, pairs, out);
-                pairs.clear();
-            }
-        }
-        addPairWrenches(bodies, pairs, out);
+        PairChunks pairs(*this, bodies, out);
+        for (const auto& [a, b] : nearPairs(tier, skipFixedPairs)) pairs.add(active[a], active[b]);
+        pairs.finish();
         std::vector<Wrench> far(tier.size());
         const auto start = std::chrono::steady_clock::now();
         const std::uint64_t n = addDipoleFarField(tier, skipFixedPairs, far, farField_);

@@ -6,9 +6,6 @@
 #include <magFoam/MeshPrimitives.hpp>
 #include <magFoam/ShapeFactory.hpp>
 
-#include <algorithm>
-#include <chrono>
-#include <limits>
 #include <map>
 
 namespace mag::bench {
@@ -42,42 +39,10 @@ std::unique_ptr<FieldEvaluator> evaluator(const std::string& yaml) {
     return FieldEvaluator::New(Dict::fromString(yaml, "magBench"));
 }
 
-double secondsPerCall(const std::function<void()>& f, double minSeconds) {
-    return bestSecondsPerCall(f, minSeconds, 1);
-}
-
-double bestSecondsPerCall(const std::function<void()>& f, double minSeconds, int repeats) {
-    using clock = std::chrono::steady_clock;
-    f();  // warm-up: builds the per-shape tables
-    double best = std::numeric_limits<double>::infinity();
-    for (int r = 0; r < std::max(repeats, 1); ++r) {
-        long calls = 0;
-        const auto t0 = clock::now();
-        double elapsed = 0;
-        do {
-            f();
-            ++calls;
-            elapsed = std::chrono::duration<double>(clock::now() - t0).count();
-        } while (elapsed < minSeconds);
-        best = std::min(best, elapsed / static_cast<double>(calls));
-    }
-    return best;
-}
-
 Vec3 exactCubeForce(const Body& lower, const Body& upper) {
     const Vec3 s1 = Vec3::Constant(std::cbrt(lower.shape->volume));
     const Vec3 s2 = Vec3::Constant(std::cbrt(upper.shape->volume));
     return oracle::akounYonnetForce(s1, lower.position, s2, upper.position, lower.material.Br, upper.material.Br);
-}
-
-std::ofstream openCsv(const std::filesystem::path& caseDir, const std::string& file, const std::string& header) {
-    const auto dir = caseDir / "postProcessing";
-    std::filesystem::create_directories(dir);
-    std::ofstream out(dir / file);
-    if (!out) throw InputError((dir / file).string() + ": cannot write");
-    out.precision(10);
-    out << header << "\n";
-    return out;
 }
 
 } // namespace mag::bench

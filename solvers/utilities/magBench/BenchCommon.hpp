@@ -1,7 +1,8 @@
 // Shared pieces of the magBench studies: the paper's cube pair, evaluators
-// from inline YAML, timing, exact references, CSV output.
+// from inline YAML, exact references (timing and CSV output: BenchHarness.hpp).
 #pragma once
 
+#include <magFoam/BenchHarness.hpp>
 #include <magFoam/Body.hpp>
 #include <magFoam/FieldEvaluator.hpp>
 
@@ -24,12 +25,6 @@ std::vector<Body> cubePair(double gap);
 // Evaluator from an inline YAML mapping, e.g. "{type: MBM, quadrature: {n: 4}}".
 std::unique_ptr<FieldEvaluator> evaluator(const std::string& yaml);
 
-// Seconds per call of f, repeated until at least minSeconds have passed.
-double secondsPerCall(const std::function<void()>& f, double minSeconds = 0.05);
-// Seconds per call of f: the best of `repeats` runs of at least minSeconds each
-// (after one warm-up call). The best, not the mean: on a machine shared with other
-// jobs, slices lost to them only ever add time.
-double bestSecondsPerCall(const std::function<void()>& f, double minSeconds, int repeats);
 
 // Exact force on the upper cube of a parallel cuboid pair (Akoun-Yonnet).
 Vec3 exactCubeForce(const Body& lower, const Body& upper);
@@ -41,7 +36,5 @@ struct Configuration {
     Vec3 exactForce;
 };
 
-// Open postProcessing/<file> under the case, with a header row.
-std::ofstream openCsv(const std::filesystem::path& caseDir, const std::string& file, const std::string& header);
 
 } // namespace mag::bench

@@ -56,35 +56,13 @@ std::vector<Method> readMethods(const Dict& study, const std::string& valueKey) 
 namespace {
 
 int run(const ArgList& args) {
-    const auto dir = args.caseDir();
-    setThreads(args.threads().value_or(1));
-    const Dict dict = Dict::fromFile(dir / "system/benchDict.yaml");
-    const Dict studies = dict.sub("studies");
-    dict.reportUnused();
-    const std::map<std::string, void (*)(const Dict&, const std::filesystem::path&)> known = {
-        {"accuracyCost", bench::accuracyCostStudy},
-        {"divergence", bench::divergenceStudy},
-        {"switchError", bench::switchErrorStudy},
-        {"table1", bench::tableOneStudy},
-        {"table2", bench::tableTwoStudy},
-        {"scaling", bench::scalingStudy}};
-    const std::string only = args.get("study");
-    if (!only.empty() && !known.count(only)) {
-        std::string valid;
-        for (const auto& [k, f] : known) valid += " " + k;
-        throw InputError("-study " + only + ": unknown study; valid:" + valid);
-    }
-    for (const auto& name : studies.keys()) {
-        if (!known.count(name)) {
-            std::string valid;
-            for (const auto& [k, f] : known) valid += (valid.empty() ? "" : ", ") + k;
-            studies.fail(name, "unknown study '" + name + "'; valid studies: " + valid);
-        }
-        if (!only.empty() && name != only) continue;
-        spdlog::info("study {}", name);
-        known.at(name)(studies.sub(name), dir);
-    }
-    return 0;
+    return bench::runStudies(args, "benchDict.yaml",
+                             {{"accuracyCost", bench::accuracyCostStudy},
+                              {"divergence", bench::divergenceStudy},
+                              {"switchError", bench::switchErrorStudy},
+                              {"table1", bench::tableOneStudy},
+                              {"table2", bench::tableTwoStudy},
+                              {"scaling", bench::scalingStudy}});
 }
 
 } // namespace

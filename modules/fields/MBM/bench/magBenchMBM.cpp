@@ -11,71 +11,14 @@
 #include "BenchMBM.hpp"
 
 #include <magFoam/ArgList.hpp>
+#include <magFoam/BenchHarness.hpp>
 #include <magFoam/Error.hpp>
-#include <magFoam/Log.hpp>
-#include <magFoam/Threads.hpp>
-
-#include <chrono>
-#include <map>
 
 using namespace mag;
 
-namespace mag::bench {
-
-double secondsPerCall(const std::function<void()>& f, double minSeconds) {
-    using clock = std::chrono::steady_clock;
-    f(); // warm-up
-    long calls = 0;
-    const auto t0 = clock::now();
-    double elapsed = 0;
-    do {
-        f();
-        ++calls;
-        elapsed = std::chrono::duration<double>(clock::now() - t0).count();
-    } while (elapsed < minSeconds);
-    return elapsed / static_cast<double>(calls);
-}
-
-std::ofstream openCsv(const std::filesystem::path& caseDir, const std::string& file, const std::string& header) {
-    const auto dir = caseDir / "postProcessing";
-    std::filesystem::create_directories(dir);
-    std::ofstream out(dir / file);
-    if (!out) throw InputError((dir / file).string() + ": cannot write");
-    out.precision(10);
-    out << header << "\n";
-    return out;
-}
-
-} // namespace mag::bench
-
 namespace {
 
-int run(const ArgList& args) {
-    const auto dir = args.caseDir();
-    setThreads(args.threads().value_or(1));
-    const Dict dict = Dict::fromFile(dir / "system/benchMBMDict.yaml");
-    const Dict studies = dict.sub("studies");
-    dict.reportUnused();
-    const std::map<std::string, void (*)(const Dict&, const std::filesystem::path&)> known = {
-        {"kernel", bench::kernelStudy}};
-    const std::string only = args.get("study");
-    if (!only.empty() && !known.count(only)) {
-        std::string valid;
-        for (const auto& [k, f] : known) valid += " " + k;
-        throw InputError("-study " + only + ": unknown study; valid:" + valid);
-    }
-    for (const auto& name : studies.keys()) {
-        if (!known.count(name)) {
-            std::string valid;
-            for (const auto& [k, f] : known) valid += (valid.empty() ? "" : ", ") + k;
-            studies.fail(name, "unknown study '" + name + "'; valid studies: " + valid);
-        }
-        if (!only.empty() && name != only) continue;
-        spdlog::info("study {}", name);
-        known.at(name)(studies.sub(name), dir);
-    }
-    return 0;
-}
+int run(const ArgList& args) { return bench::runStudies(args, "benchMBMDict.yaml", {{"kernel", bench::kernelStudy}}); }
 
 } // namespace
 
