@@ -3,8 +3,22 @@
 #include "magFoam/Threads.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace mag {
+
+namespace {
+
+// d x F with each multiply-add fused as written (this file is compiled without
+// the compiler's own contraction, core/CMakeLists.txt): the reaction torque's
+// rounding is fixed here, whatever the surrounding code, and is the one the
+// solver has always had.
+Vec3 reactionArm(const Vec3& d, const Vec3& F) {
+    return {std::fma(-d.z(), F.y(), d.y() * F.z()), std::fma(-d.x(), F.z(), d.z() * F.x()),
+            std::fma(d.x(), F.y(), -(d.y() * F.x()))};
+}
+
+} // namespace
 
 void FieldEvaluator::addWrenches(std::span<const Body> bodies, std::span<const std::size_t> active,
                                  bool skipFixedPairs, std::span<Wrench> out) const {
@@ -48,7 +62,7 @@ void FieldEvaluator::addPairWrenches(std::span<const Body> bodies, std::span<con
         out[t] += w;
         Wrench r;
         r.force = -w.force;
-        r.torque = -w.totalTorque() - (bodies[t].position - bodies[s].position).cross(w.force);
+        r.torque = -w.totalTorque() - reactionArm(bodies[t].position - bodies[s].position, w.force);
         r.energy = w.energy;
         out[s] += r;
     }

@@ -31,7 +31,19 @@ Wrench dipolePairWrench(const Vec3& ms, const Vec3& mt, const Vec3& r) {
     return w;
 }
 
-FarFieldBody farFieldBody(const Body& b, double reach) { return {b.position, b.magneticMoment(), reach, b.fixed}; }
+FarFieldBody farFieldBody(const Body& b, double reach) {
+    // m = V (q M q*), q M q* = M + w U + q_v x U with U = 2 q_v x M (Eigen's
+    // rotation), with every multiply-add fused as written: the rounding of the
+    // moments the far field has always used, now fixed in this file instead of
+    // left to the compiler at the caller.
+    const Vec3& M = b.magnetizationBody;
+    const double qx = b.orientation.x(), qy = b.orientation.y(), qz = b.orientation.z(), qw = b.orientation.w();
+    const double ux = 2 * std::fma(-qz, M.y(), qy * M.z()), uy = 2 * std::fma(-qx, M.z(), qz * M.x()),
+                 uz = 2 * std::fma(qx, M.y(), -(qy * M.x()));
+    const double cx = std::fma(-qz, uy, qy * uz), cy = std::fma(-qx, uz, qz * ux), cz = std::fma(qx, uy, -(qy * ux));
+    const Vec3 world(std::fma(qw, ux, M.x()) + cx, std::fma(qw, uy, M.y()) + cy, std::fma(qw, uz, M.z()) + cz);
+    return {b.position, world * b.shape->volume, reach, b.fixed};
+}
 
 namespace {
 constexpr double kC2 = 12.0, kC4 = 0.3;  // see the header
