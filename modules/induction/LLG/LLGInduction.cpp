@@ -309,6 +309,27 @@ StepResult llgStep(Vec3& m1, Vec3& m2, const Vec3& b, double k, double alpha, co
     return r;
 }
 
+// Rotations q v q* = v + w U + q_v x U, U = 2 q_v x v (Eigen's form), written out
+// with each multiply-add fused as written. Two fusings, the ones these call sites
+// have always had: results then do not depend on how the compiler inlines Eigen's
+// q * v here (it fuses differently inline and out of line).
+Vec3 rotate(const Quat& q, const Vec3& v) {
+    const double qx = q.x(), qy = q.y(), qz = q.z(), qw = q.w();
+    const double ux = 2 * std::fma(-qz, v.y(), qy * v.z()), uy = 2 * std::fma(-qx, v.z(), qz * v.x()),
+                 uz = 2 * std::fma(qx, v.y(), -(qy * v.x()));
+    const double cx = std::fma(qy, uz, -(qz * uy)), cy = std::fma(qz, ux, -(qx * uz)), cz = std::fma(qx, uy, -(qy * ux));
+    return {std::fma(qw, ux, v.x()) + cx, std::fma(qw, uy, v.y()) + cy, cz + std::fma(qw, uz, v.z())};
+}
+// The body's magnetization in the world frame.
+Vec3 worldMagnetization(const Body& b) {
+    const Vec3& v = b.magnetizationBody;
+    const double qx = b.orientation.x(), qy = b.orientation.y(), qz = b.orientation.z(), qw = b.orientation.w();
+    const double ux = 2 * std::fma(qy, v.z(), -(qz * v.y())), uy = 2 * std::fma(qz, v.x(), -(qx * v.z())),
+                 uz = 2 * std::fma(qx, v.y(), -(qy * v.x()));
+    const double cx = std::fma(qy, uz, -(qz * uy)), cy = std::fma(qz, ux, -(qx * uz)), cz = std::fma(qx, uy, -(qy * ux));
+    return {std::fma(qw, ux, v.x()) + cx, std::fma(qw, uy, v.y()) + cy, std::fma(qw, uz, v.z()) + cz};
+}
+
 class LLGInduction final : public InductionModel {
 public:
     explicit LLGInduction(const Dict& d) {
@@ -333,8 +354,7 @@ public:
             if (bodies[i].soft()) soft.push_back(i);
         const std::size_t n = soft.size();
         if (n == 0) return report;
-        std::vector<SoftParams> par(n);
-        for (std::size_t a = 0; a < n; ++a) par[a] = softParams(bodies[soft[a]]);
+        const std::vector<SoftParams> par = softParams(bodies, soft);
 
         // Fields at the soft bodies' centres: permanent part and soft-to-soft maps.
         std::vector<Vec3> centres(n);
@@ -348,7 +368,7 @@ public:
         for (std::size_t a = 0; a < n; ++a) {
             const Body& body = bodies[soft[a]];
             Js[a] = par[a].Js;
-            M[a] = body.magnetization();
+            M[a] = worldMagnetization(body);
         }
         for (std::size_t b = 0; b < n; ++b) {
             const Body& body = bodies[soft[b]];
@@ -356,8 +376,8 @@ public:
             const auto it = state_.find(body.name);
             if (it != state_.end() && it->second.m1.allFinite() && it->second.m2.allFinite() &&
                 (Ms * 0.5 * (it->second.m1 + it->second.m2) - body.magnetizationBody).norm() <= 1e-9 * Ms) {
-                m1[b] = body.orientation * it->second.m1;
-                m2[b] = body.orientation * it->second.m2;
+                m1[b] = rotate(body.orientation, it->second.m1);
+                m2[b] = rotate(body.orientation, it->second.m2);
             } else {
                 initialPair(M[b], Ms, fieldAt(b, Bfixed, G, M), m1[b], m2[b]);
                 M[b] = Ms * 0.5 * (m1[b] + m2[b]);
@@ -398,7 +418,7 @@ public:
                 continue;
             }
             const Quat toBody = body.orientation.conjugate();
-            const Pair pair{toBody * m1[b], toBody * m2[b]};
+            const Pair pair{rotate(toBody, m1[b]), rotate(toBody, m2[b])};
             body.magnetizationBody = Js[b] / mu0 * 0.5 * (pair.m1 + pair.m2);
             state_[body.name] = pair;
             if (!(change[b] < set_.tolerance)) report.unconverged.push_back(body.name);
@@ -468,6 +488,12 @@ private:
     struct SoftParams {
         double k = 0, Js = 0, alpha = 0.5;
     };
+    [[gnu::noinline]] static std::vector<SoftParams> softParams(const std::vector<Body>& bodies,
+                                                               const std::vector<std::size_t>& soft) {
+        std::vector<SoftParams> out;
+        for (std::size_t i : soft) out.push_back(softParams(bodies[i]));
+        return out;
+    }
     static SoftParams softParams(const Body& body) {
         const Material& m = body.material;
         static const std::vector<std::string> keys = {"k", "Js", "alpha"};
