@@ -173,7 +173,7 @@ def scaling():
                 multipole = [int(r["bodies"]) for r in sel if r.get("dipoleSum") == "multipole"]
                 method = f" (multipole from N = {min(multipole)})" if multipole else ""
                 ax2.semilogx(n, [1e3 * float(r["farFieldMs"]) / k for r, k in zip(sel, n)], color=f"C{fi}", ls=":",
-                             lw=1.2, label=f"{f}, 1 thread: dipole sum alone{method}")
+                             lw=1.2, label=f"{f}, 1 thread: dipole sum, timed in the step{method}")
             if ti == 0 and fi == 0 and "directFarFieldMs" in sel[0]:
                 ax2.semilogx(n, [1e3 * float(r["directFarFieldMs"]) / k for r, k in zip(sel, n)], color="k", ls=":",
                              lw=1.2, label=f"{f}, 1 thread: direct dipole sum (O(N^2))")
