@@ -18,34 +18,6 @@ namespace mag::detail {
 
 inline constexpr double kMu = mu0 / (4.0 * pi);
 
-// The dipole-pair formula (corrected Eq. 5, Eq. 6; docs/physics.md#dipoles-and-edm)
-// as one scalar sequence of operations, shared by the bulk and multipole sums
-// (one vector lane per target) and dipolePairWrench(): every path rounds alike.
-// r = c_t - c_s, inv2 = 1 / |r|^2; ms at c_s acts on mt at c_t:
-//   B = mu0/(4 pi |r|^3) (3 (ms.r) r / |r|^2 - ms)
-//   F = 3 mu0/(4 pi |r|^5) [(mt.r) ms + (ms.r) mt + (ms.mt) r - 5 (ms.r)(mt.r) r / |r|^2]
-//   torque = mt x B, energy = -mt . B
-struct DipolePairTerms {
-    double fx, fy, fz, tx, ty, tz, e;
-};
-inline DipolePairTerms dipolePairTerms(double rx, double ry, double rz, double sx, double sy, double sz, double tmx,
-                                       double tmy, double tmz, double inv2) {
-    const double inv3 = inv2 * std::sqrt(inv2);
-    const double msr = sx * rx + sy * ry + sz * rz, mtr = tmx * rx + tmy * ry + tmz * rz;
-    const double mm = sx * tmx + sy * tmy + sz * tmz;
-    // B of the source at the target.
-    const double b3 = 3.0 * msr * inv2, kb = kMu * inv3;
-    const double bx = kb * (b3 * rx - sx), by = kb * (b3 * ry - sy), bz = kb * (b3 * rz - sz);
-    const double f = 3.0 * kMu * inv3 * inv2, g = 5.0 * msr * mtr * inv2;
-    return {f * ((mtr * sx + msr * tmx) + mm * rx - g * rx),
-            f * ((mtr * sy + msr * tmy) + mm * ry - g * ry),
-            f * ((mtr * sz + msr * tmz) + mm * rz - g * rz),
-            tmy * bz - tmz * by,
-            tmz * bx - tmx * bz,
-            tmx * by - tmy * bx,
-            -(tmx * bx + tmy * by + tmz * bz)};
-}
-
 // The bodies as arrays. `fixed` is 1 for bodies whose pairs with each other are
 // skipped (fixed bodies when skipFixedPairs), else 0.
 struct DipoleArrays {
@@ -83,6 +55,11 @@ struct BlockSums {
 // the scalar sequence of operations (no FMA, IEEE division and sqrt, no sums
 // across lanes), so the result does not depend on the vector width. One division
 // and one sqrt a pair bound the speed (timings: cases/benchmarks, `scaling`).
+// This loop is the dipole-pair formula (corrected Eq. 5, Eq. 6;
+// docs/physics.md#dipoles-and-edm) of every dipole sum here: the bulk and
+// multipole sums and dipolePairWrench() all run it, so they round alike. It is
+// written out in the loop, not called: a helper returning the terms as a struct
+// keeps the compiler from vectorizing it (3-4x slower).
 // A run of sources [first, second).
 using SourceRange = std::pair<std::size_t, std::size_t>;
 
@@ -106,14 +83,21 @@ inline void sumBlock(const DipoleArrays& t, std::size_t i0, std::size_t m, const
             // by the selects (a NaN position drops out the same way).
             const bool far = (d2 > lim * lim) & (fi[k] * fj == 0.0);
             const double inv2 = 1.0 / (far ? d2 : 1.0);
-            const DipolePairTerms w = dipolePairTerms(rx, ry, rz, sx, sy, sz, mxi[k], myi[k], mzi[k], inv2);
-            fx[k] += far ? w.fx : 0.0;
-            fy[k] += far ? w.fy : 0.0;
-            fz[k] += far ? w.fz : 0.0;
-            tx[k] += far ? w.tx : 0.0;
-            ty[k] += far ? w.ty : 0.0;
-            tz[k] += far ? w.tz : 0.0;
-            e[k] += far ? w.e : 0.0;
+            const double inv3 = inv2 * std::sqrt(inv2);
+            const double tmx = mxi[k], tmy = myi[k], tmz = mzi[k];
+            const double msr = sx * rx + sy * ry + sz * rz, mtr = tmx * rx + tmy * ry + tmz * rz;
+            const double mm = sx * tmx + sy * tmy + sz * tmz;
+            // B of the source at the target.
+            const double b3 = 3.0 * msr * inv2, kb = kMu * inv3;
+            const double bx = kb * (b3 * rx - sx), by = kb * (b3 * ry - sy), bz = kb * (b3 * rz - sz);
+            const double f = 3.0 * kMu * inv3 * inv2, g = 5.0 * msr * mtr * inv2;
+            fx[k] += far ? f * ((mtr * sx + msr * tmx) + mm * rx - g * rx) : 0.0;
+            fy[k] += far ? f * ((mtr * sy + msr * tmy) + mm * ry - g * ry) : 0.0;
+            fz[k] += far ? f * ((mtr * sz + msr * tmz) + mm * rz - g * rz) : 0.0;
+            tx[k] += far ? tmy * bz - tmz * by : 0.0;
+            ty[k] += far ? tmz * bx - tmx * bz : 0.0;
+            tz[k] += far ? tmx * by - tmy * bx : 0.0;
+            e[k] -= far ? tmx * bx + tmy * by + tmz * bz : 0.0;
             c[k] += far ? 1.0 : 0.0;
         }
     }

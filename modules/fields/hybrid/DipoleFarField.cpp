@@ -20,15 +20,16 @@
 namespace mag {
 
 Wrench dipolePairWrench(const Vec3& ms, const Vec3& mt, const Vec3& r) {
-    // The formula of the bulk sums (DipoleBlockSum.hpp), so that both round alike.
-    const double d2 = r.x() * r.x() + r.y() * r.y() + r.z() * r.z();
-    const detail::DipolePairTerms t =
-        detail::dipolePairTerms(r.x(), r.y(), r.z(), ms.x(), ms.y(), ms.z(), mt.x(), mt.y(), mt.z(), 1.0 / d2);
-    Wrench w;
-    w.force = Vec3(t.fx, t.fy, t.fz);
-    w.torque = Vec3(t.tx, t.ty, t.tz);
-    w.energy = t.e;
-    return w;
+    // The bulk sums' own loop (DipoleBlockSum.hpp) on one target and one source,
+    // so that both round alike: the source at the origin, the target at r.
+    detail::DipoleArrays t, s;
+    t.resize(1), s.resize(1);
+    t.set(0, FarFieldBody{r, mt, 0.0, false}, false);
+    s.set(0, FarFieldBody{Vec3::Zero(), ms, 0.0, false}, false);
+    detail::BlockSums sums;
+    const detail::SourceRange one{0, 1};
+    detail::sumBlock(t, 0, 1, s, {&one, 1}, sums);
+    return sums.wrench(0);
 }
 
 FarFieldBody farFieldBody(const Body& b, double reach) {
