@@ -67,10 +67,6 @@ struct BodyState {
 
 // A body as the models see it in a step: its model and its current state.
 struct Body : BodyModel, BodyState {
-    BodyState& state() { return *this; }
-    const BodyState& state() const { return *this; }
-    const BodyModel& model() const { return *this; }
-
     Mat3 inertiaWorld() const {
         const Mat3 R = orientation.toRotationMatrix();
         return R * inertiaBody() * R.transpose();

@@ -35,7 +35,6 @@ struct Material {
     std::optional<Dict> dict;  // where the material was read (none when built in code)
 
     bool soft() const { return model == Model::soft; }
-    bool has(const std::string& key) const { return properties.count(key) != 0; }
     // The soft property `key`; `fallback` when absent, or an error naming the
     // key when there is no fallback.
     double property(const std::string& key) const;

@@ -22,7 +22,8 @@ namespace mag {
 Wrench dipolePairWrench(const Vec3& ms, const Vec3& mt, const Vec3& r) {
     // The bulk sums' own loop (DipoleBlockSum.hpp) on one target and one source,
     // so that both round alike: the source at the origin, the target at r.
-    detail::DipoleArrays t, s;
+    // One pair's arrays per thread, reused: no allocation per call.
+    thread_local detail::DipoleArrays t, s;
     t.resize(1), s.resize(1);
     t.set(0, FarFieldBody{r, mt, 0.0, false}, false);
     s.set(0, FarFieldBody{Vec3::Zero(), ms, 0.0, false}, false);
