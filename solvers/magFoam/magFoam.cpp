@@ -18,6 +18,7 @@
 
 #include "TimeLoop.hpp"
 
+#include <algorithm>
 #include <csignal>
 
 using namespace mag;
@@ -98,9 +99,11 @@ int run(const ArgList& args) {
     std::signal(SIGINT, onSignal);
     std::signal(SIGTERM, onSignal);
     solver::RunStatistics stats(loop, soft);
-    std::vector<Body> lastGood;  // kept to write on a non-finite state; reused storage
+    // The last good per-step state (poses, velocities, magnetizations), to write
+    // on a non-finite one; the bodies' fixed models are not copied every step.
+    std::vector<BodyState> lastGood(bodies.size());
     for (long step = loop.firstStep(); step <= loop.lastStep(); ++step) {
-        lastGood = bodies;
+        std::copy(bodies.begin(), bodies.end(), lastGood.begin());
 
         // Algorithm 1: induction loop (only with soft bodies), then wrenches.
         stats.start(solver::RunStatistics::Phase::magnetic);
@@ -115,7 +118,9 @@ int run(const ArgList& args) {
         stats.stepDone();
 
         if (const Body* bad = firstNonFinite(bodies, &wrenches)) {
-            write(lastGood, step - 1, false);  // the models hold the bad step's state
+            std::vector<Body> good = bodies;
+            for (std::size_t i = 0; i < good.size(); ++i) static_cast<BodyState&>(good[i]) = lastGood[i];
+            write(good, step - 1, false);  // the models hold the bad step's state
             throw StateError("non-finite state or wrench of body '" + bad->name + "' in step " +
                              std::to_string(step) + " (t = " + std::to_string(loop.time(step)) +
                              " s); last good state written to " + timeName(loop.time(step - 1)) + "/");
