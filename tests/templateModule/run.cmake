@@ -25,19 +25,13 @@ set(BUILD ${WORK_DIR}/build)
 set(CASE ${WORK_DIR}/case)
 string(TIMESTAMP t0 "%s")
 
-function(step)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "step failed (${rc}): ${ARGN}\n${out}\n${err}")
-  endif()
-  set(STEP_OUT "${out}${err}" PARENT_SCOPE)
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/../runStep.cmake)
 
 # The project's sources, not its build folders.
 file(REMOVE_RECURSE ${SRC} ${CASE})
 file(MAKE_DIRECTORY ${SRC})
 file(COPY ${SOURCE_DIR}/CMakeLists.txt DESTINATION ${SRC})
-foreach(dir cmake core modules solvers)
+foreach(dir cmake core reference modules solvers)
   file(COPY ${SOURCE_DIR}/${dir} DESTINATION ${SRC} PATTERN ".*" EXCLUDE)
 endforeach()
 

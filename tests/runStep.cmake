@@ -1,0 +1,9 @@
+# step(COMMAND...): run one command of a scripted test (cmake -P); stop with its
+# output when it fails. STEP_OUT holds what it printed (stdout, then stderr).
+function(step)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "step failed (${rc}): ${ARGN}\n${out}\n${err}")
+  endif()
+  set(STEP_OUT "${out}${err}" PARENT_SCOPE)
+endfunction()
