@@ -1,24 +1,37 @@
 // Magnetic Boundary Method field evaluator (paper Sec. 4):
 //
-//   field: {type: MBM, quadrature: {type: gauss, n: 10}, overlap: charge}
+//   field: {type: MBM, quadrature: {type: adaptive, tolerance: 1e-4}, overlap: charge}
 //
-// | key             | default | meaning                                            |
-// |-----------------|---------|----------------------------------------------------|
-// | quadrature.type | gauss   | regular (paper: n x n midpoints per planar face)   |
-// |                 |         | or gauss (n x n Gauss-Legendre per face)           |
-// | quadrature.n    | 10      | points per face edge, 1..100                        |
-// | overlap         | charge  | charge (Akoun-Yonnet: pushes overlapping magnets   |
-// |                 |         | apart) or amperian (energy force),                 |
-// |                 |         | docs/physics.md#overlap-models                     |
+// | key                   | default  | meaning                                      |
+// |-----------------------|----------|----------------------------------------------|
+// | quadrature.type       | adaptive | adaptive (tolerance-driven, contact-exact,   |
+// |                       |          | AdaptiveQuadrature.hpp), regular (paper:     |
+// |                       |          | n x n midpoints per planar face) or gauss    |
+// |                       |          | (n x n Gauss-Legendre per face)              |
+// | quadrature.tolerance  | 1e-4     | adaptive: relative error of force and        |
+// |                       |          | torque / size per pair, 1e-12..0.1           |
+// | quadrature.order      | 3        | adaptive: Gauss points per element side 1..12 |
+// | quadrature.maxSamples | 200000   | adaptive: per pair; beyond it the pair keeps |
+// |                       |          | its estimate (counted as adaptiveCapped)     |
+// | quadrature.n          | 10       | regular, gauss: points per face edge, 1..100 |
+// | overlap               | charge   | charge (Akoun-Yonnet: pushes overlapping     |
+// |                       |          | magnets apart) or amperian (energy force),   |
+// |                       |          | docs/physics.md#overlap-models               |
 //
 // A and B of the source are exact (Fabbri, Eqs. 9-15), evaluated in the
 // source's body frame on the target's boundary samples moved there; only the
 // boundary integrals of Eqs. 16-18 are sampled. Per-shape tables (edges,
 // planar faces, samples) are built once and shared by all bodies of a shape.
+// The adaptive rule places its samples per pair (they depend on where the
+// source is); at contact it takes the one-sided limit from the target's
+// interior, so touching magnets attract in both overlap models
+// (docs/physics.md#adaptive-quadrature).
 //
 // Threads: interaction() and evaluate() may run concurrently (the shape cache
 // is behind a mutex, scratch is per thread); interaction() splits the target's
-// samples into fixed blocks that run on the worker threads (Threads.hpp).
+// samples (gauss, regular) or elements (adaptive) into fixed blocks that run on
+// the worker threads (Threads.hpp).
+#include "AdaptiveQuadrature.hpp"
 #include "InteractionWrench.hpp"
 #include "PolyhedronField.hpp"
 #include "PolyhedronTables.hpp"
@@ -33,6 +46,7 @@
 #include <cstdint>
 #include <map>
 #include <mutex>
+#include <sstream>
 
 namespace mag {
 
@@ -46,10 +60,24 @@ class MBMField final : public FieldEvaluator {
 public:
     explicit MBMField(const Dict& d) {
         const Dict q = d.subOrEmpty("quadrature");
-        ruleName_ = q.getWord("type", {"regular", "gauss"}, "gauss");
-        rule_ = mbm::quadratureRuleFromName(ruleName_);
-        n_ = q.get<int>("n", 10);
-        if (n_ < 1 || n_ > 100) q.fail("n", "quadrature n must be 1..100 (points per face edge)");
+        ruleName_ = q.getWord("type", {"adaptive", "regular", "gauss"}, "adaptive");
+        adaptive_ = ruleName_ == "adaptive";
+        if (adaptive_) {
+            adaptiveSettings_.tolerance = q.get<double>("tolerance", 1e-4);
+            if (!(adaptiveSettings_.tolerance >= 1e-12 && adaptiveSettings_.tolerance <= 0.1))
+                q.fail("tolerance", "adaptive tolerance must be 1e-12..0.1 (relative error per pair)");
+            adaptiveSettings_.order = q.get<int>("order", 3);
+            if (adaptiveSettings_.order < 1 || adaptiveSettings_.order > 12)
+                q.fail("order", "adaptive order must be 1..12 (Gauss points per element side)");
+            const double maxSamples = q.get<double>("maxSamples", 200000);
+            if (!(maxSamples >= 100 && maxSamples <= 1e9))
+                q.fail("maxSamples", "adaptive maxSamples must be 100..1e9 (samples per pair)");
+            adaptiveSettings_.maxSamples = static_cast<std::size_t>(maxSamples);
+        } else {
+            rule_ = mbm::quadratureRuleFromName(ruleName_);
+            n_ = q.get<int>("n", 10);
+            if (n_ < 1 || n_ > 100) q.fail("n", "quadrature n must be 1..100 (points per face edge)");
+        }
         q.reportUnused();
         overlapName_ = d.getWord("overlap", {"charge", "amperian"}, "charge");
         overlap_ = mbm::overlapModelFromName(overlapName_);
@@ -79,6 +107,7 @@ public:
         Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
         T.linear() = (qs * target.orientation).toRotationMatrix();
         T.translation() = qs * (target.position - source.position);
+        if (adaptive_) return adaptiveInteraction(source, src, tgt, T, target);
         thread_local std::vector<Vec3> points, normals;
         mbm::transformSamples(tgt.samples, T, points, normals);
         const Vec3 Mt = T.linear() * target.magnetizationBody;
@@ -122,18 +151,55 @@ public:
     }
 
     std::string describe() const override {
-        return "MBM (quadrature " + ruleName_ + " n=" + std::to_string(n_) + ", overlap " + overlapName_ + ")";
+        std::ostringstream s;
+        s << "MBM (quadrature " << ruleName_;
+        if (adaptive_) s << " tolerance=" << adaptiveSettings_.tolerance << " order=" << adaptiveSettings_.order;
+        else s << " n=" << n_;
+        s << ", overlap " << overlapName_ << ")";
+        return s.str();
     }
 
     // boundarySamples: the target samples taken by interaction() so far (cost
-    // reports, e.g. magBench's table1 and table2).
+    // reports, e.g. magBench's table1 and table2). Adaptive only: pairs (pair
+    // evaluations), pairSamplesMin/Max (samples of the cheapest and dearest
+    // one; mean = boundarySamples / pairs) and cappedPairs (stopped at
+    // maxSamples before the tolerance).
     FieldStats stats() const override {
         FieldStats s;
         s.add("boundarySamples", samples_.load(std::memory_order_relaxed));
+        if (adaptive_) {
+            const std::uint64_t pairs = pairs_.load(std::memory_order_relaxed);
+            s.add("pairs", pairs);
+            s.add("pairSamplesMin", pairs ? minSamples_.load(std::memory_order_relaxed) : 0);
+            s.add("pairSamplesMax", maxSamples_.load(std::memory_order_relaxed));
+            s.add("cappedPairs", capped_.load(std::memory_order_relaxed));
+        }
         return s;
     }
 
 private:
+    struct ShapeData;
+
+    Wrench adaptiveInteraction(const Body& source, const ShapeData& src, const ShapeData& tgt,
+                               const Eigen::Isometry3d& T, const Body& target) const {
+        const Vec3 Mt = T.linear() * target.magnetizationBody;
+        const mbm::AdaptiveResult r =
+            mbm::adaptiveInteraction(src.tables, source.magnetizationBody, tgt.tables, T, Mt, T.translation(),
+                                     overlap_, adaptiveSettings_);
+        Wrench out;
+        out.force = source.orientation * r.wrench.force;
+        out.torque = source.orientation * r.wrench.torque;
+        out.mechanicalTorque = source.orientation * r.wrench.mechanicalTorque;
+        out.energy = r.wrench.energy;
+        const std::uint64_t n = r.samples;
+        samples_.fetch_add(n, std::memory_order_relaxed);
+        pairs_.fetch_add(1, std::memory_order_relaxed);
+        if (r.capped) capped_.fetch_add(1, std::memory_order_relaxed);
+        for (std::uint64_t m = minSamples_.load(); n < m && !minSamples_.compare_exchange_weak(m, n);) {}
+        for (std::uint64_t m = maxSamples_.load(); n > m && !maxSamples_.compare_exchange_weak(m, n);) {}
+        return out;
+    }
+
     struct ShapeData {
         mbm::PolyhedronTables tables;
         mbm::SurfaceQuadrature samples;
@@ -148,7 +214,8 @@ private:
             return *it->second.data;
         try {
             mbm::PolyhedronTables tables(shape->mesh.vertices, shape->mesh.triangles);
-            auto samples = mbm::buildSurfaceQuadrature(tables, rule_, n_);
+            // The adaptive rule places its samples per pair.
+            auto samples = adaptive_ ? mbm::SurfaceQuadrature{} : mbm::buildSurfaceQuadrature(tables, rule_, n_);
             auto d = std::make_unique<ShapeData>(ShapeData{std::move(tables), std::move(samples)});
             auto& entry = cache_[shape.get()];
             entry = CacheEntry{shape, std::move(d)};
@@ -161,9 +228,12 @@ private:
     std::string ruleName_, overlapName_;
     mbm::QuadratureRule rule_ = mbm::QuadratureRule::gauss;
     int n_ = 10;
+    bool adaptive_ = true;
+    mbm::AdaptiveSettings adaptiveSettings_;
     mbm::OverlapModel overlap_ = mbm::OverlapModel::charge;
     mutable std::mutex mutex_;
-    mutable std::atomic<std::uint64_t> samples_{0};
+    mutable std::atomic<std::uint64_t> samples_{0}, pairs_{0}, capped_{0}, maxSamples_{0};
+    mutable std::atomic<std::uint64_t> minSamples_{UINT64_MAX};
     struct CacheEntry {
         std::weak_ptr<const Shape> shape;
         std::unique_ptr<const ShapeData> data;

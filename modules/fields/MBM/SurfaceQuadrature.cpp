@@ -145,6 +145,14 @@ void gaussLegendre(int n, std::vector<double>& nodes, std::vector<double>& weigh
     }
 }
 
+std::vector<Vec3> convexFaceCorners(const PolyhedronTables& tables, int face) {
+    const PolyFace& f = tables.faces()[static_cast<std::size_t>(face)];
+    if (f.loops.size() != 1) return {};
+    std::vector<Vec3> corners = loopCorners(tables, f.loops[0]);
+    if (corners.size() < 3 || !isConvex(corners, f.normal)) return {};
+    return corners;
+}
+
 SurfaceQuadrature buildSurfaceQuadrature(const PolyhedronTables& tables, QuadratureRule rule,
                                          int n) {
     if (n < 1) throw std::invalid_argument("buildSurfaceQuadrature: n must be >= 1");

@@ -55,6 +55,11 @@ struct SurfaceQuadrature {
     std::size_t size() const { return points.size(); }
 };
 
+/// Corners of face `face` when it is a single boundary loop whose turning vertices form
+/// a strictly convex polygon (CCW about its normal, collinear intermediate vertices
+/// skipped); empty otherwise (the face is then used triangle by triangle).
+std::vector<Vec3> convexFaceCorners(const PolyhedronTables& tables, int face);
+
 /// Builds the samples of `rule` with parameter n (>= 1) on every planar face of `tables`.
 SurfaceQuadrature buildSurfaceQuadrature(const PolyhedronTables& tables, QuadratureRule rule,
                                          int n);
