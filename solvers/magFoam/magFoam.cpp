@@ -135,8 +135,10 @@ int run(const ArgList& args) {
     }
     stats.summary();
     spdlog::info("  field: {}", magnets.fieldEvaluator().describe());
-    if (const FieldStats fs = magnets.fieldEvaluator().stats(); !fs.counts.empty())
+    if (const FieldStats fs = magnets.fieldEvaluator().stats(); !fs.counts.empty()) {
         spdlog::info("  field counters: {}", fs.format());
+        for (const std::string& line : fs.pairSampleLines()) spdlog::info("  {}", line);
+    }
     return 0;
 }
 

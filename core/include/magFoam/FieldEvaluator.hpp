@@ -43,6 +43,28 @@ struct FieldStats {
     void add(const std::string& prefix, const FieldStats& other) {
         for (const auto& [k, v] : other.counts) counts.emplace_back(prefix + k, v);
     }
+    // Per-pair sample counts of an adaptive quadrature (MBM's counters pairs,
+    // pairSamplesMin, pairSamplesMax, boundarySamples, cappedPairs, under any
+    // prefix such as "near."): one log line per evaluator that has them.
+    std::vector<std::string> pairSampleLines() const {
+        std::vector<std::string> lines;
+        const std::string key = "pairSamplesMin";
+        for (const auto& [k, v] : counts) {
+            if (k.size() < key.size() || k.compare(k.size() - key.size(), key.size(), key) != 0) continue;
+            const std::string prefix = k.substr(0, k.size() - key.size());
+            const std::uint64_t pairs = count(prefix + "pairs");
+            if (pairs == 0) continue;
+            const std::uint64_t mean = count(prefix + "boundarySamples") / pairs;
+            std::string line = (prefix.empty() ? "" : prefix.substr(0, prefix.size() - 1) + ": ") +
+                               "adaptive quadrature, " + std::to_string(pairs) +
+                               " pair evaluations, samples per pair min " + std::to_string(v) + " / mean " +
+                               std::to_string(mean) + " / max " + std::to_string(count(prefix + "pairSamplesMax"));
+            if (const std::uint64_t capped = count(prefix + "cappedPairs"))
+                line += ", " + std::to_string(capped) + " stopped at maxSamples";
+            lines.push_back(line);
+        }
+        return lines;
+    }
     // "name N, name N, ..." for logs; empty without counters.
     std::string format() const {
         std::string s;

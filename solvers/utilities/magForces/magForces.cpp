@@ -108,6 +108,7 @@ int run(const ArgList& args) {
     }
     spdlog::info("{} evaluation(s), {:.3f} ms each; wrote {}", steps, 1e3 * seconds / steps, csvPath.string());
     spdlog::info("field: {}", system.fieldEvaluator().describe());
+    for (const std::string& line : system.fieldEvaluator().stats().pairSampleLines()) spdlog::info("{}", line);
     return 0;
 }
 
