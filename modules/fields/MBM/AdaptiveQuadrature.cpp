@@ -23,7 +23,6 @@ constexpr int kMaxOrder = 12;
 // feature too poorly for the parent/children difference to see its error (measured:
 // with n + 1 sinh-graded points, 1 mm gaps were off by 6e-5 at tolerance 1e-6).
 constexpr int kGradedOrder = 8;
-constexpr double kChainRatio = 16.0; // geometric ratio of the gap chain (gradedChain)
 // The accepted value is the children's sum, whose error is that of the parent
 // (|children - parent|) reduced by the halving: by 2^(2n) for a smooth integrand, by
 // at least 4 for every integrand the grading leaves with two derivatives; the estimate
@@ -51,39 +50,34 @@ const Rule1D& gauss01(int n) {
     return table[static_cast<std::size_t>(n)];
 }
 
-// x(tau) on [0, 1] graded towards x = 0 for a feature at distance g (units of the
-// interval) beyond it: g = 0 (on the end) tau^3, which turns a log x into tau^2 ln tau;
-// g > 0 the sinh map x = g sinh(tau asinh(1/g)), which spreads a near-singular
-// log(x^2 + g^2) evenly over tau (Johnston & Elliott's transformation).
-void graded(double tau, double g, double& x, double& dx) {
+// Points of the rule r on [a, b] graded towards a for a feature at distance g (units
+// of b - a) beyond a. g = 0 (on the end): x = tau^3, which turns a log x into
+// tau^2 ln tau and keeps the rule exact for polynomials of degree (2m - 3) / 3 in x.
+// g > 0 (a gap): a geometric chain of intervals, each three times as wide as its
+// distance to the feature, [0, 3g], [3g, 15g], ... up to the end, with plain Gauss on
+// each: the feature sits 1/3 of a width beyond every interval, where m-point Gauss
+// converges like 3^(-2m) (8 points: 2e-8), and the chain reaches the scale g in
+// log_4(1 / g) intervals - a 1 um gap under a 1 cm face in 7. (A sinh map on fewer,
+// longer intervals costs fewer points but is not exact for constants; its bias repeats
+// at every refinement level, where the estimate cannot see it.)
+void gradedChain(const Rule1D& r, double g, double a, double b, double chainWidth,
+                 std::vector<double>& x, std::vector<double>& w) {
+    const double L = b - a, absL = std::abs(L);
     if (g <= 0.0) {
-        x = tau * tau * tau;
-        dx = 3.0 * tau * tau;
+        for (std::size_t i = 0; i < r.x.size(); ++i) {
+            const double t = r.x[i];
+            x.push_back(a + L * t * t * t);
+            w.push_back(absL * 3.0 * t * t * r.w[i]);
+        }
         return;
     }
-    const double A = std::asinh(1.0 / g);
-    x = g * std::sinh(A * tau);
-    dx = g * A * std::cosh(A * tau);
-}
-
-// Points of the rule on [a, b] graded towards a for a feature g (units of b - a)
-// beyond a: g = 0 one tau^3 interval; g > 0 a geometric chain of intervals
-// [0, r g], [r g, r^2 g], ... (r = kChainRatio) up to the end, each with the sinh map
-// for the feature as it sees it (~1/r of its width), so a 1 um gap under a 1 cm face
-// costs log_r(1 / g) intervals instead of a refinement that cannot see the gap.
-void gradedChain(const Rule1D& r, double g, double a, double b, std::vector<double>& x,
-                 std::vector<double>& w) {
-    const double L = b - a;
     double lo = 0.0; // in units of L, from a
     while (lo < 1.0) {
-        const double hi = g <= 0.0 ? 1.0 : std::min(1.0, std::max(kChainRatio * (g + lo), 2.0 * lo));
+        const double hi = std::min(1.0, lo + chainWidth * (g + lo));
         const double h = hi - lo;
-        const double gl = g <= 0.0 ? 0.0 : (g + lo) / h;
         for (std::size_t i = 0; i < r.x.size(); ++i) {
-            double y, dy;
-            graded(r.x[i], gl, y, dy);
-            x.push_back(a + (b - a) * (lo + h * y));
-            w.push_back(std::abs(L) * h * dy * r.w[i]);
+            x.push_back(a + L * (lo + h * r.x[i]));
+            w.push_back(absL * h * r.w[i]);
         }
         lo = hi;
     }
@@ -91,8 +85,15 @@ void gradedChain(const Rule1D& r, double g, double a, double b, std::vector<doub
 
 // The n-point rule on [0, 1] for features at distances gLow, gHigh beyond its ends
 // (units of the interval; < 0 or >= 1: none): plain Gauss, graded towards one end, or
-// towards both (each half graded towards its end).
-void rule1D(int n, double gLow, double gHigh, std::vector<double>& x, std::vector<double>& w) {
+// towards both. A parent's rule must differ from the union of its children's near the
+// features, or |children - parent| cannot see the error there: with a feature on both
+// ends the whole interval takes the two-sided map x = tau^3 / (tau^3 + (1 - tau)^3)
+// (its children grade one end each); otherwise two graded parts meeting at 0.4 (the
+// children meet at 0.5), and a gap's chain alternates its width factor between
+// refinement levels (chainWidth 3 or 2), since a child's chain would repeat its
+// parent's near the feature.
+void rule1D(int n, double gLow, double gHigh, double chainWidth, std::vector<double>& x,
+            std::vector<double>& w) {
     const bool lo = gLow >= 0.0 && gLow < 1.0, hi = gHigh >= 0.0 && gHigh < 1.0;
     x.clear();
     w.clear();
@@ -103,9 +104,18 @@ void rule1D(int n, double gLow, double gHigh, std::vector<double>& x, std::vecto
         return;
     }
     const Rule1D& r = gauss01(std::min(kMaxOrder, std::max(2 * n, kGradedOrder)));
-    const double mid = lo && hi ? 0.5 : (lo ? 1.0 : 0.0);
-    if (lo) gradedChain(r, gLow / mid, 0.0, mid, x, w);
-    if (hi) gradedChain(r, gHigh / (1.0 - mid), 1.0, mid, x, w); // reversed: b < a
+    if (lo && hi && gLow <= 0.0 && gHigh <= 0.0) {
+        for (std::size_t i = 0; i < r.x.size(); ++i) {
+            const double t = r.x[i], a = t * t * t, b = (1 - t) * (1 - t) * (1 - t);
+            x.push_back(a / (a + b));
+            w.push_back(3.0 * t * t * (1 - t) * (1 - t) / ((a + b) * (a + b)) * r.w[i]);
+        }
+        return;
+    }
+    // Both ends otherwise: graded halves split at 0.4, not at the children's 0.5.
+    const double mid = lo && hi ? 0.4 : (lo ? 1.0 : 0.0);
+    if (lo) gradedChain(r, gLow / mid, 0.0, mid, chainWidth, x, w);
+    if (hi) gradedChain(r, gHigh / (1.0 - mid), 1.0, mid, chainWidth, x, w); // reversed: b < a
 }
 
 // An element's geometry: a bilinear quadrilateral c0..c3 or a collapsed triangle with
@@ -200,7 +210,7 @@ double metric(const Wrench& w, double L) {
 }
 
 // The element rule on the box [s0, s1] x [t0, t1] of geometry g.
-Wrench boxRule(const Context& ctx, int gi, double s0, double s1, double t0, double t1) {
+Wrench boxRule(const Context& ctx, int gi, double s0, double s1, double t0, double t1, int depth) {
     const Geometry& g = ctx.geometry[static_cast<std::size_t>(gi)];
     // Feature distances beyond the box's sides in units of its width (a box away from
     // a feature sees it at >= 1 width and takes plain Gauss).
@@ -210,8 +220,9 @@ Wrench boxRule(const Context& ctx, int gi, double s0, double s1, double t0, doub
     };
     const double hs = s1 - s0, ht = t1 - t0;
     thread_local Rule1D rs, rt;
-    rule1D(ctx.order, beyond(0, s0, hs), beyond(1, 1.0 - s1, hs), rs.x, rs.w);
-    rule1D(ctx.order, beyond(2, t0, ht), beyond(3, 1.0 - t1, ht), rt.x, rt.w);
+    const double chainWidth = depth % 2 ? 2.0 : 3.0;
+    rule1D(ctx.order, beyond(0, s0, hs), beyond(1, 1.0 - s1, hs), chainWidth, rs.x, rs.w);
+    rule1D(ctx.order, beyond(2, t0, ht), beyond(3, 1.0 - t1, ht), chainWidth, rt.x, rt.w);
     const Vec3& n = ctx.pieces.normals[static_cast<std::size_t>(g.face)];
     const Vec3 shift = -ctx.pieces.inwardOffset[static_cast<std::size_t>(g.face)] * n;
     thread_local std::vector<Vec3> points, normals;
@@ -246,7 +257,7 @@ void expand(const Context& ctx, Node& n) {
     for (int k = 0; k < 4; ++k) {
         double s0, s1, t0, t1;
         childBox(n, k, s0, s1, t0, t1);
-        n.kids[static_cast<std::size_t>(k)] = boxRule(ctx, n.geometry, s0, s1, t0, t1);
+        n.kids[static_cast<std::size_t>(k)] = boxRule(ctx, n.geometry, s0, s1, t0, t1, n.depth + 1);
         n.value += n.kids[static_cast<std::size_t>(k)];
     }
     Wrench diff = n.value;
@@ -279,7 +290,7 @@ AdaptiveResult adaptiveInteraction(const PolyhedronTables& source, const Vec3& M
     parallelFor(nodes.size(), [&](std::size_t i) {
         Node& n = nodes[i];
         n.geometry = static_cast<int>(i);
-        n.own = boxRule(ctx, n.geometry, 0, 1, 0, 1);
+        n.own = boxRule(ctx, n.geometry, 0, 1, 0, 1, 0);
         expand(ctx, n);
     });
     AdaptiveResult r;

@@ -11,9 +11,10 @@
 //    An element's rule is n x n tensor Gauss-Legendre (n = order) in (s, t). In a
 //    direction whose end lies on a source feature, or within one box width of one, the
 //    rule is graded towards it with max(2n, 8) points: s = tau^3 for a feature on the
-//    side (a log x becomes tau^2 ln tau), the sinh map x = g sinh(tau asinh(1/g)) on a
-//    geometric chain of intervals (ratio 16) for a feature at a distance g (a gap: the
-//    chain reaches the scale g in log_16(1/g) intervals). A triangle's apex counts as a
+//    side (a log x becomes tau^2 ln tau), a geometric chain of Gauss intervals each
+//    three times as wide as its distance to the feature for a feature at a distance g
+//    (a gap: the chain reaches the scale g in log_4(1/g) intervals). A triangle's apex
+//    counts as a
 //    feature when a side through it does.
 // 3. Error estimate: an element's value is the sum of its four children's rules (the
 //    halves in s and t); the parent's error is |children - parent| in the metric
