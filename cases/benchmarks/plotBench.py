@@ -247,6 +247,51 @@ def kernel():
     fig.savefig(out / "kernel.png", dpi=90)
 
 
+def tolerance():
+    """Adaptive quadrature: requested tolerance vs achieved force error; error vs
+    samples per evaluation beside gauss and the paper's regular rule."""
+    data = rows("tolerance")
+    if not data:
+        return
+    colours = {"separated": "tab:blue", "near": "tab:green", "touching": "tab:red", "overlap": "tab:purple"}
+    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(13, 5))
+    names = []
+    for r in data:
+        if r["placement"] not in names:
+            names.append(r["placement"])
+    for name in names:
+        sel = [r for r in data if r["placement"] == name and r["rule"] == "adaptive"]
+        kind = sel[0]["kind"]
+        ax.loglog([float(r["parameter"]) for r in sel], [max(float(r["forceError"]), 1e-13) for r in sel], "o-",
+                  color=colours[kind], ms=3, lw=0.8, label=f"{name} ({kind})")
+    ax.loglog([1e-8, 1e-2], [1e-8, 1e-2], "k--", lw=1, label="achieved = requested")
+    ax.set_xlabel("requested tolerance")
+    ax.set_ylabel("achieved force error |F - F_ref| / |F_ref|")
+    ax.set_title("Adaptive quadrature: is the tolerance honest? (two 1 cm cubes)")
+    ax.legend(fontsize=6, ncol=2)
+    ax.grid(alpha=0.3, which="both")
+    styles = {"adaptive": "o-", "gauss": "s--", "regular": "^:"}
+    for kind in ["separated", "touching"]:
+        for rule in ["adaptive", "gauss", "regular"]:
+            sel = [r for r in data if r["kind"] == kind and r["rule"] == rule]
+            params = sorted({float(r["parameter"]) for r in sel})
+            xs, ys = [], []
+            for prm in params:  # worst placement of the kind at this setting
+                group = [r for r in sel if float(r["parameter"]) == prm]
+                xs.append(max(int(r["samples"]) for r in group))
+                ys.append(max(max(float(r["forceError"]) for r in group), 1e-13))
+            order = sorted(range(len(xs)), key=lambda i: xs[i])
+            ax2.loglog([xs[i] for i in order], [ys[i] for i in order], styles[rule], color=colours[kind], ms=3,
+                       lw=0.9, label=f"{rule}, {kind} (worst case)")
+    ax2.set_xlabel("samples per pair evaluation")
+    ax2.set_ylabel("force error (worst placement of the group)")
+    ax2.set_title("Accuracy against cost")
+    ax2.legend(fontsize=7)
+    ax2.grid(alpha=0.3, which="both")
+    fig.tight_layout()
+    fig.savefig(out / "tolerance.png", dpi=90)
+
+
 accuracy_cost()
 divergence()
 switch_error()
@@ -254,5 +299,6 @@ table1()
 table2()
 scaling()
 kernel()
+tolerance()
 print("charts in", out)
 sys.exit(0)

@@ -10,5 +10,6 @@
 namespace mag::bench {
 
 void kernelStudy(const Dict& study, const std::filesystem::path& caseDir);
+void toleranceStudy(const Dict& study, const std::filesystem::path& caseDir);
 
 } // namespace mag::bench

@@ -6,6 +6,7 @@
 //
 //   studies:
 //     kernel: {...}           ns per point of the MBM field kernel, reference vs fast
+//     tolerance: {...}        adaptive quadrature: requested vs achieved error, cost vs gauss, regular
 //
 // -threads N sets the worker count (default 1).
 #include "BenchMBM.hpp"
@@ -18,7 +19,7 @@ using namespace mag;
 
 namespace {
 
-int run(const ArgList& args) { return bench::runStudies(args, "benchMBMDict.yaml", {{"kernel", bench::kernelStudy}}); }
+int run(const ArgList& args) { return bench::runStudies(args, "benchMBMDict.yaml", {{"kernel", bench::kernelStudy}, {"tolerance", bench::toleranceStudy}}); }
 
 } // namespace
 
