@@ -96,15 +96,14 @@ inline void intervalOverlap(double c1, double h1, double c2, double h2, double& 
 
 }  // namespace detail
 
-/// Charge-model (Coulombian) force on magnet 2 (N) from magnet 1, both axis-aligned
-/// cuboids polarized along +z: size = full edge lengths (m), centre (m), J (T).
-/// Finite for every configuration (separate, touching, overlapping); at exactly
-/// coplanar faces the mean of the two one-sided limits.
-inline Eigen::Vector3d akounYonnetForce(const Eigen::Vector3d& size1,
-                                        const Eigen::Vector3d& centre1,
-                                        const Eigen::Vector3d& size2,
-                                        const Eigen::Vector3d& centre2, double J1,
-                                        double J2) {
+namespace detail {
+
+/// The corner sum of Akoun-Yonnet, F = J1 J2 / (4 pi mu0) sum (-1)^(i+...+q) phi(u, v, w),
+/// with the kernel phi(u, v, w) given (akounYonnetPhi, or a one-sided variant).
+template <class Phi>
+Eigen::Vector3d akounYonnetSum(const Eigen::Vector3d& size1, const Eigen::Vector3d& centre1,
+                               const Eigen::Vector3d& size2, const Eigen::Vector3d& centre2,
+                               double J1, double J2, const Phi& phi) {
     const Eigen::Vector3d h1 = 0.5 * size1, h2 = 0.5 * size2;
     const Eigen::Vector3d d = centre2 - centre1;
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
@@ -119,11 +118,26 @@ inline Eigen::Vector3d akounYonnetForce(const Eigen::Vector3d& size1,
                             const double w =
                                 d.z() + (q ? -h2.z() : h2.z()) - (p ? -h1.z() : h1.z());
                             const double sign = ((i + j + k + l + p + q) & 1) ? -1.0 : 1.0;
-                            sum += sign * detail::akounYonnetPhi(u, v, w);
+                            sum += sign * phi(u, v, w);
                         }
                 }
         }
     return J1 * J2 / (4.0 * pi * mu0) * sum;
+}
+
+}  // namespace detail
+
+/// Charge-model (Coulombian) force on magnet 2 (N) from magnet 1, both axis-aligned
+/// cuboids polarized along +z: size = full edge lengths (m), centre (m), J (T).
+/// Finite for every configuration (separate, touching, overlapping); at exactly
+/// coplanar faces the mean of the two one-sided limits.
+inline Eigen::Vector3d akounYonnetForce(const Eigen::Vector3d& size1,
+                                        const Eigen::Vector3d& centre1,
+                                        const Eigen::Vector3d& size2,
+                                        const Eigen::Vector3d& centre2, double J1,
+                                        double J2) {
+    return detail::akounYonnetSum(size1, centre1, size2, centre2, J1, J2,
+                                  [](double u, double v, double w) { return detail::akounYonnetPhi(u, v, w); });
 }
 
 /// Volume (m^3) of the intersection of two axis-aligned boxes (full sizes, centres).

@@ -139,27 +139,12 @@ inline Eigen::Vector3d akounYonnetForceOneSided(const Eigen::Vector3d& size1,
                                                 const Eigen::Vector3d& size2,
                                                 const Eigen::Vector3d& centre2, double J1,
                                                 double J2) {
-    const Eigen::Vector3d h1 = 0.5 * size1, h2 = 0.5 * size2;
     const Eigen::Vector3d d = centre2 - centre1;
     const double side = d.z() > 0.0 ? 1.0 : (d.z() < 0.0 ? -1.0 : 0.0);
-    const double wZero = 1e-13 * (h1.z() + h2.z());
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    for (int i = 0; i < 2; ++i)
-        for (int j = 0; j < 2; ++j) {
-            const double u = d.x() + (j ? -h2.x() : h2.x()) - (i ? -h1.x() : h1.x());
-            for (int k = 0; k < 2; ++k)
-                for (int l = 0; l < 2; ++l) {
-                    const double v = d.y() + (l ? -h2.y() : h2.y()) - (k ? -h1.y() : h1.y());
-                    for (int p = 0; p < 2; ++p)
-                        for (int q = 0; q < 2; ++q) {
-                            double w = d.z() + (q ? -h2.z() : h2.z()) - (p ? -h1.z() : h1.z());
-                            if (std::abs(w) <= wZero) w = 0.0;
-                            const double sign = ((i + j + k + l + p + q) & 1) ? -1.0 : 1.0;
-                            sum += sign * detail::akounYonnetPhiOneSided(u, v, w, side);
-                        }
-                }
-        }
-    return J1 * J2 / (4.0 * pi * mu0) * sum;
+    const double wZero = 1e-13 * 0.5 * (size1.z() + size2.z());
+    return detail::akounYonnetSum(size1, centre1, size2, centre2, J1, J2, [&](double u, double v, double w) {
+        return detail::akounYonnetPhiOneSided(u, v, std::abs(w) <= wZero ? 0.0 : w, side);
+    });
 }
 
 /// What contactChargeWrench did: field evaluations and error estimates (N, N m; the
