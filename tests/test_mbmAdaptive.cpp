@@ -9,6 +9,7 @@
 
 #include "AdaptiveQuadrature.hpp"
 #include "PolyhedronTables.hpp"
+#include "SurfaceQuadrature.hpp"
 #include "oracles/akounYonnet.hpp"
 #include "oracles/contactQuadrature.hpp"
 
@@ -81,7 +82,10 @@ std::vector<Placement> separatedPlacements() {
         {"gap 2 mm offset", {0.003, 0.001, 0.012}},
         {"gap 5 mm", {0, 0, 0.015}},
         {"beside, 1 cm apart", {0.02, 0.004, 0.002}},
-        {"rotated, gap ~1 mm", {0.001, 0, 0.0125}, rotation(Vec3(1, 2, 0), 0.4), false},
+        // Its lowest vertex is 0.28 mm above the source; the next one lifts it to 1 mm.
+        {"rotated, gap 0.28 mm", {0.001, 0, 0.0125}, rotation(Vec3(1, 2, 0), 0.4), false},
+        {"rotated, gap 1 mm", {0.001, 0, 0.0125 + 0.001 - 0.000282397374723}, rotation(Vec3(1, 2, 0), 0.4), false},
+        {"gap 1 mm offset (3, 2) mm", {0.003, 0.002, 0.011}},
     };
 }
 
@@ -196,15 +200,47 @@ TEST_CASE("adaptive quadrature: through overlap, charge follows Akoun-Yonnet and
 }
 
 TEST_CASE("adaptive quadrature: cost follows need") {
-    // A far pair stops at the first level: 5 boxes of 3 x 3 points on each of 6 faces.
+    // A far pair stops at its first rules: 3 x 3 and 5 x 5 Gauss on each of 6 faces.
     const AdaptiveResult far = adaptive({"far", {0, 0, 0.05}}, OverlapModel::charge, 1e-4);
-    CHECK(far.samples == 6 * 5 * 9);
+    CHECK(far.samples == 6 * (9 + 25));
     const AdaptiveResult touching = adaptive({"touching", {0.003, 0.002, kEdge}}, OverlapModel::charge, 1e-4);
     CHECK(touching.samples > 4 * far.samples);
     // Tightening the tolerance costs samples, not accuracy.
     const AdaptiveResult tight = adaptive({"touching", {0.003, 0.002, kEdge}}, OverlapModel::charge, 1e-7);
     CHECK(tight.samples > touching.samples);
     CHECK(tight.estimate <= 1e-7);
+}
+
+TEST_CASE("adaptive quadrature: separated by 1 mm or more, no more samples than gauss n = 10") {
+    // Gauss n = 10 on the cube: 6 x 100 samples. The default takes fewer for every
+    // placement at gaps >= 1 mm except one: offset (3, 2) mm at a 1 mm gap, where the
+    // source's edges pass 1 mm under the target face's interior. There Gauss n = 10 is
+    // off by 1e-3 and does not meet the tolerance at all; the adaptive rule meets it
+    // with 664 samples (measured), which this test does not hide: it checks the error
+    // of both rules instead of the count.
+    const std::size_t gauss10 = 600;
+    for (const Placement& p : separatedPlacements()) {
+        if (p.name == "rotated, gap 0.28 mm") continue; // below 1 mm
+        const Reference ref = reference(p);
+        for (OverlapModel model : {OverlapModel::charge, OverlapModel::amperian}) {
+            const AdaptiveResult r = adaptive(p, model, 1e-4);
+            INFO(p.name << ": samples " << r.samples << ", force error " << errors(r, ref).force);
+            CHECK(errors(r, ref).force < 1e-4);
+            if (p.name != "gap 1 mm offset (3, 2) mm") {
+                CHECK(r.samples <= gauss10);
+                continue;
+            }
+            const SurfaceQuadrature q = buildSurfaceQuadrature(cube(), QuadratureRule::gauss, 10);
+            REQUIRE(q.size() == gauss10);
+            Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+            T.translation() = p.centre;
+            std::vector<Vec3> points, normals;
+            transformSamples(q, T, points, normals);
+            const Wrench g = interactionWrench(cube(), Vec3(0, 0, kM), points, q.weights, normals,
+                                               Vec3(0, 0, kM), p.centre, model);
+            CHECK((g.force - ref.force).norm() > 1e-4 * ref.force.norm());
+        }
+    }
 }
 
 TEST_CASE("adaptive quadrature: bit-identical on 1 and 2 threads") {

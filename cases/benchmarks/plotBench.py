@@ -248,13 +248,14 @@ def kernel():
 
 
 def tolerance():
-    """Adaptive quadrature: requested tolerance vs achieved force error; error vs
-    samples per evaluation beside gauss and the paper's regular rule."""
+    """Adaptive quadrature: requested tolerance vs achieved force error; then, for
+    representative placements, error against samples and against time per evaluation,
+    beside gauss and the paper's regular rule."""
     data = rows("tolerance")
     if not data:
         return
     colours = {"separated": "tab:blue", "near": "tab:green", "touching": "tab:red", "overlap": "tab:purple"}
-    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(13, 5))
+    fig, (ax, ax2, ax3) = plt.subplots(1, 3, figsize=(18, 5.5))
     names = []
     for r in data:
         if r["placement"] not in names:
@@ -267,27 +268,32 @@ def tolerance():
     ax.loglog([1e-8, 1e-2], [1e-8, 1e-2], "k--", lw=1, label="achieved = requested")
     ax.set_xlabel("requested tolerance")
     ax.set_ylabel("achieved force error |F - F_ref| / |F_ref|")
-    ax.set_title("Adaptive quadrature: is the tolerance honest? (two 1 cm cubes)")
+    ax.set_title("Is the tolerance honest? (two 1 cm cubes, adaptive)")
     ax.legend(fontsize=6, ncol=2)
     ax.grid(alpha=0.3, which="both")
+    shown = {"gap 1 mm": "tab:blue", "offset (3, 2) mm, gap 1 mm": "tab:cyan", "gap 1 um": "tab:green",
+             "offset face (3, 2) mm": "tab:red", "rotated footprint 30 deg": "tab:orange"}
     styles = {"adaptive": "o-", "gauss": "s--", "regular": "^:"}
-    for kind in ["separated", "touching"]:
+    for name, colour in shown.items():
         for rule in ["adaptive", "gauss", "regular"]:
-            sel = [r for r in data if r["kind"] == kind and r["rule"] == rule]
-            params = sorted({float(r["parameter"]) for r in sel})
-            xs, ys = [], []
-            for prm in params:  # worst placement of the kind at this setting
-                group = [r for r in sel if float(r["parameter"]) == prm]
-                xs.append(max(int(r["samples"]) for r in group))
-                ys.append(max(max(float(r["forceError"]) for r in group), 1e-13))
-            order = sorted(range(len(xs)), key=lambda i: xs[i])
-            ax2.loglog([xs[i] for i in order], [ys[i] for i in order], styles[rule], color=colours[kind], ms=3,
-                       lw=0.9, label=f"{rule}, {kind} (worst case)")
-    ax2.set_xlabel("samples per pair evaluation")
-    ax2.set_ylabel("force error (worst placement of the group)")
-    ax2.set_title("Accuracy against cost")
-    ax2.legend(fontsize=7)
-    ax2.grid(alpha=0.3, which="both")
+            sel = sorted((r for r in data if r["placement"] == name and r["rule"] == rule),
+                         key=lambda r: int(r["samples"]))
+            if not sel:
+                continue
+            err = [max(float(r["forceError"]), 1e-13) for r in sel]
+            label = f"{name}, {rule}"
+            ax2.loglog([int(r["samples"]) for r in sel], err, styles[rule], color=colour, ms=3, lw=0.9, label=label)
+            ax3.loglog([1e6 * float(r["secondsPerEval"]) for r in sel], err, styles[rule], color=colour, ms=3,
+                       lw=0.9, label=label)
+    for a, xlabel in [(ax2, "samples per pair evaluation"), (ax3, "time per pair evaluation (us, one thread)")]:
+        a.axhline(1e-4, color="grey", lw=0.8, ls="-.")
+        a.set_xlabel(xlabel)
+        a.set_ylabel("force error")
+        a.grid(alpha=0.3, which="both")
+    ax2.axvline(600, color="grey", lw=0.8, ls=":")
+    ax2.set_title("Accuracy against samples (adaptive: tolerance 1e-2..1e-8)")
+    ax3.set_title("Accuracy against time")
+    ax2.legend(fontsize=6, ncol=1)
     fig.tight_layout()
     fig.savefig(out / "tolerance.png", dpi=90)
 

@@ -120,6 +120,7 @@ void splitTargetFaces(const PolyhedronTables& source, const PolyhedronTables& ta
     out.pieces.clear();
     out.normals.clear();
     out.inwardOffset.clear();
+    out.nearDistance.clear();
     out.cuts = 0;
     const auto& SV = source.vertices();
     const auto& TV = target.vertices();
@@ -156,6 +157,7 @@ void splitTargetFaces(const PolyhedronTables& source, const PolyhedronTables& ta
         for (const auto& poly : polygons)
             for (const Vec3& c : poly) diameter = std::max(diameter, (c - o).norm());
         const double dNear = nearFraction * diameter;
+        out.nearDistance.push_back(dNear);
         const double lref = std::max(diameter, source.maxEdgeLength());
         const double eps = std::numeric_limits<double>::epsilon();
         const double planeTol = 1e-10 * lref + 64.0 * eps * (o.norm() + sourceExtent);

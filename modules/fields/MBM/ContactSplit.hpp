@@ -49,12 +49,15 @@ struct TargetPieces {
     std::vector<FacePiece> pieces;
     std::vector<Vec3> normals;  ///< per target face: outward unit normal, source frame
     std::vector<double> inwardOffset; ///< per target face: m, > 0 on a source face plane
+    /// per target face: dNear (m); every source feature nearer to the face plane was cut
+    /// along (or lies outside the face), so the pieces see nearer features only on their sides
+    std::vector<double> nearDistance;
     std::size_t cuts = 0;       ///< pieces created by cutting (diagnostics)
 };
 
 /// Cuts the faces of `target` (placed in the source frame by T: target -> source) along
 /// the source features within dNear = nearFraction x (face diameter) of each face plane.
 void splitTargetFaces(const PolyhedronTables& source, const PolyhedronTables& target,
-                      const Eigen::Isometry3d& T, TargetPieces& out, double nearFraction = 0.1);
+                      const Eigen::Isometry3d& T, TargetPieces& out, double nearFraction = 0.3);
 
 } // namespace mag::mbm

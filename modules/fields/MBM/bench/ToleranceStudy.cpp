@@ -43,7 +43,11 @@ std::vector<Placement> placements() {
     return {
         {"gap 5 mm", "separated", {0, 0, 0.015}},
         {"gap 1 mm", "separated", {0, 0, 0.011}},
-        {"rotated, gap ~1 mm", "separated", {0.001, 0, 0.0125}, rot(Vec3(1, 2, 0), 0.4), false},
+        {"offset (3, 2) mm, gap 2 mm", "separated", {0.003, 0.002, 0.012}},
+        {"offset (3, 2) mm, gap 1 mm", "separated", {0.003, 0.002, 0.011}},
+        // its lowest vertex 1 mm (0.28 mm) above the source
+        {"rotated, gap 1 mm", "separated", {0.001, 0, 0.0125 + 0.001 - 0.000282397374723}, rot(Vec3(1, 2, 0), 0.4), false},
+        {"rotated, gap 0.28 mm", "near", {0.001, 0, 0.0125}, rot(Vec3(1, 2, 0), 0.4), false},
         {"gap 100 um", "near", {0, 0, 0.0101}},
         {"gap 10 um", "near", {0, 0, 0.01001}},
         {"gap 1 um", "near", {0, 0, 0.010001}},
