@@ -212,7 +212,8 @@ struct Context {
     const std::vector<Geometry>& geometry;
     const TargetPieces& pieces;
     double length; // L of the error metric
-    Vec3 sourceLow, sourceHigh; // the source's bounding box
+    const std::vector<std::pair<Vec3, Vec3>>& sourceBoxes; // per source face: centre, half size
+    double tolerance;
     mutable std::atomic<std::size_t> samples{0};
 };
 
@@ -279,9 +280,11 @@ Wrench plainRule(const Context& ctx, const Node& nd, int m) {
 }
 
 // A lower bound of the box's distance to the source, in units of the box's longest
-// side: the largest gap between the projections of the box's corners and of the
-// source's bounding box on separating axes (the box's, the face normal, the box's
-// in-plane side normals). 0 when they touch.
+// side: the smallest over the source's faces of the largest gap between the
+// projections of the box's corners and of the face's bounding box on separating axes
+// (the coordinate axes, the face normal, the box's in-plane side normals). 0 when
+// they touch. (Per face, not the source's bounding box: a clip lying beside another
+// is far from most of its faces and inside its bounding box.)
 double separation(const Context& ctx, const Node& nd, double* boxWidth = nullptr) {
     const Geometry& g = ctx.geometry[static_cast<std::size_t>(nd.geometry)];
     std::array<Vec3, 4> c;
@@ -300,20 +303,27 @@ double separation(const Context& ctx, const Node& nd, double* boxWidth = nullptr
         const Vec3 axis = side.cross(n);
         if (axis.norm() > 0.0) axes[count++] = axis.normalized();
     }
-    const Vec3 mid = 0.5 * (ctx.sourceLow + ctx.sourceHigh), half = 0.5 * (ctx.sourceHigh - ctx.sourceLow);
-    double d = 0.0;
+    std::array<double, 8> lo, hi;
     for (std::size_t k = 0; k < count; ++k) {
-        const Vec3& a = axes[k];
-        double lo = a.dot(c[0]), hi = lo;
+        lo[k] = hi[k] = axes[k].dot(c[0]);
         for (const Vec3& x : c) {
-            lo = std::min(lo, a.dot(x));
-            hi = std::max(hi, a.dot(x));
+            lo[k] = std::min(lo[k], axes[k].dot(x));
+            hi[k] = std::max(hi[k], axes[k].dot(x));
         }
-        const double reach = a.cwiseAbs().dot(half);
-        d = std::max({d, lo - (a.dot(mid) + reach), (a.dot(mid) - reach) - hi});
+    }
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const auto& [mid, half] : ctx.sourceBoxes) {
+        double d = 0.0;
+        for (std::size_t k = 0; k < count; ++k) {
+            const Vec3& a = axes[k];
+            const double reach = a.cwiseAbs().dot(half), m = a.dot(mid);
+            d = std::max({d, lo[k] - (m + reach), (m - reach) - hi[k]});
+        }
+        nearest = std::min(nearest, d);
+        if (nearest <= 0.0) break;
     }
     if (boxWidth) *boxWidth = width;
-    return width > 0.0 ? d / width : 0.0;
+    return width > 0.0 && nearest > 0.0 ? nearest / width : 0.0;
 }
 
 // Gauss-Legendre on an interval converges like rho^(-2m) for an integrand analytic
@@ -353,6 +363,12 @@ void evaluateByOrder(const Context& ctx, Node& nd, bool raise, double share) {
         step = std::clamp(step, 1, kMaxOrder - nd.order);
         nd.order += step;
     } else {
+        // The first order: the one the rate predicts for the tolerance (relative to
+        // the element's own value), at least 2, at most n + 2; its reference two
+        // orders lower (one from 2).
+        const double need = std::ceil(std::log(1.0 / ctx.tolerance) / (2.0 * std::log(rho)));
+        nd.order = static_cast<int>(std::clamp(need, 2.0, static_cast<double>(nd.order)));
+        step = nd.order >= 3 ? kOrderStep : 1;
         nd.own = plainRule(ctx, nd, nd.order - step);
     }
     nd.value = plainRule(ctx, nd, nd.order);
@@ -403,13 +419,19 @@ AdaptiveResult adaptiveInteraction(const PolyhedronTables& source, const Vec3& M
     splitTargetFaces(source, target, T, pieces);
     std::vector<Geometry> geometry;
     for (const FacePiece& p : pieces.pieces) addElements(p, geometry);
-    Vec3 low = Vec3::Constant(std::numeric_limits<double>::infinity()), high = -low;
-    for (const Vec3& v : source.vertices()) {
-        low = low.cwiseMin(v);
-        high = high.cwiseMax(v);
+    thread_local std::vector<std::pair<Vec3, Vec3>> boxes;
+    boxes.clear();
+    for (const PolyFace& f : source.faces()) {
+        Vec3 low = Vec3::Constant(std::numeric_limits<double>::infinity()), high = -low;
+        for (const auto& loop : f.loops)
+            for (int v : loop) {
+                low = low.cwiseMin(source.vertices()[static_cast<std::size_t>(v)]);
+                high = high.cwiseMax(source.vertices()[static_cast<std::size_t>(v)]);
+            }
+        boxes.emplace_back(0.5 * (low + high), 0.5 * (high - low));
     }
     const Context ctx{source, Ms, Mt, rc, model, settings.order, geometry, pieces,
-                      target.boundingRadius(), low, high};
+                      target.boundingRadius(), boxes, settings.tolerance};
     const int firstOrder = std::min(kMaxOrder, settings.order + kOrderStep);
 
     std::vector<Node> nodes(geometry.size());

@@ -22,17 +22,18 @@
 //    metric e(W) = max(|F|, |T + Tm| / L), L = the target's bounding radius, and the
 //    children sum's error is estimated as a quarter of it (a halving gains 2^(2n) on
 //    a smooth integrand, at least 4 on a graded one).
-//    Otherwise: refined by ORDER. Gauss (n + 2)^2 with its estimate from Gauss n^2,
-//    scaled by the geometric convergence rate rho that a lower bound of the distance
-//    to the source guarantees (Bernstein ellipse); raising the order jumps to the one
+//    Otherwise: refined by ORDER. Gauss m x m, m the order that the geometric
+//    convergence rate rho (Bernstein ellipse; guaranteed by a lower bound of the
+//    distance to the source's faces) predicts for the tolerance, 2..n + 2, with its
+//    estimate from Gauss (m - 2) scaled by rho; raising the order jumps to the one
 //    the rate predicts, up to 12, then the element halves into order elements.
 //    The tolerance chart in cases/benchmarks compares the estimates with the
 //    achieved error.
 // 4. Refinement: while the summed estimate exceeds tolerance x e(W_total) (with a floor
 //    of 1e-9 of the summed |F| of the elements, for pairs whose force cancels to 0),
 //    the elements holding half of the estimated error (largest first) are refined.
-//    A far pair stops at its first rules (9 + 25 samples per face); a touching pair
-//    spends its samples beside the contact.
+//    A far pair stops at its first rules (5 samples per face 4 cm from a 1 cm cube);
+//    a touching pair spends its samples beside the contact.
 //
 // Deterministic: each round's elements are evaluated in parallel (parallelFor), and
 // every sum runs over the elements in a fixed order, so the result does not depend on
