@@ -11,6 +11,15 @@ ControlDict ControlDict::read(const Dict& d) {
     c.startFrom = d.getWord("startFrom", {"startTime", "latestTime"}, "startTime");
     c.libs = d.get<std::vector<std::string>>("libs", {});
     c.threads = d.get<int>("threads", 1);
+    if (d.has("audit")) {
+        const Dict a = d.sub("audit");
+        c.audit.energyRise = a.get<double>("energyRise", c.audit.energyRise);
+        c.audit.travel = a.get<double>("travel", c.audit.travel);
+        c.audit.strict = a.get<bool>("strict", c.audit.strict);
+        if (!(c.audit.energyRise > 0)) a.fail("energyRise", "must be > 0 (a fraction of the peak kinetic energy)");
+        if (!(c.audit.travel > 0)) a.fail("travel", "must be > 0 (a fraction of the body's smallest dimension)");
+        a.reportUnused();
+    }
     if (c.deltaT <= 0) d.fail("deltaT", "time step must be positive (seconds)");
     if (c.endTime < c.startTime) d.fail("endTime", "endTime must not be before startTime");
     if (c.writeInterval <= 0) d.fail("writeInterval", "write interval must be positive (simulated seconds)");

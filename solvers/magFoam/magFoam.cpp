@@ -16,6 +16,7 @@
 #include <magFoam/RigidBodyBackend.hpp>
 #include <magFoam/Threads.hpp>
 
+#include "StepAudit.hpp"
 #include "TimeLoop.hpp"
 
 #include <algorithm>
@@ -99,6 +100,9 @@ int run(const ArgList& args) {
     std::signal(SIGINT, onSignal);
     std::signal(SIGTERM, onSignal);
     solver::RunStatistics stats(loop, soft);
+    AuditSettings auditSettings = c.control().audit;
+    auditSettings.strict = auditSettings.strict || args.found("strict");
+    solver::StepAudit audit(bodies, auditSettings, magnets.fieldEvaluator().forceTolerance(), gravity);
     // The last good per-step state (poses, velocities, magnetizations), to write
     // on a non-finite one; the bodies' fixed models are not copied every step.
     std::vector<BodyState> lastGood(bodies.size());
@@ -126,6 +130,10 @@ int run(const ArgList& args) {
                              " s); last good state written to " + timeName(loop.time(step - 1)) + "/");
         }
         const double t = loop.time(step);
+        if (const auto stop = audit.check(step, t, loop.deltaT(), lastGood, bodies, wrenches)) {
+            write(bodies, step, true);
+            throw StateError(*stop + " (audit.strict; state written to " + timeName(t) + "/)");
+        }
         if (loop.isWriteTime(step) || stopRequested) write(bodies, step, true);
         if (stopRequested) {
             spdlog::info("Stopped by signal at t = {}; state written to {}/", t, timeName(t));
@@ -134,6 +142,7 @@ int run(const ArgList& args) {
         stats.progress(t, step);
     }
     stats.summary();
+    audit.summary(bodies);
     spdlog::info("  field: {}", magnets.fieldEvaluator().describe());
     if (const FieldStats fs = magnets.fieldEvaluator().stats(); !fs.counts.empty()) {
         spdlog::info("  field counters: {}", fs.format());
@@ -146,6 +155,7 @@ int run(const ArgList& args) {
 
 int main(int argc, char** argv) {
     ArgList args("magFoam", "Transient solver: rigid magnets moving, colliding and sticking (paper Algorithm 1).");
+    args.option("strict", "", "stop the run when the energy and motion audit warns (controlDict audit.strict)");
     if (!args.parse(argc, argv)) return args.exitCode();
     return runGuarded(args, run);
 }

@@ -8,6 +8,13 @@
 //   libs: []              # extra plugin libraries: bare names or paths
 //   threads: 1            # worker threads for the pair wrenches (0 = all cores);
 //                         # results are bit-identical for any count (Threads.hpp)
+//   audit:                # magFoam's per-step energy and motion audit (docs/dynamics.md)
+//     energyRise: 0.05    # warn when the total energy exceeds its start by this
+//                         # fraction of the peak kinetic energy (plus what the
+//                         # field's tolerance allows)
+//     travel: 0.1         # warn when a body moves (or its surface turns) by more
+//                         # than this fraction of its smallest dimension in a step
+//     strict: false       # stop the run instead (also: magFoam -strict)
 #pragma once
 
 #include "magFoam/Dictionary.hpp"
@@ -17,6 +24,12 @@
 
 namespace mag {
 
+struct AuditSettings {
+    double energyRise = 0.05;
+    double travel = 0.1;
+    bool strict = false;
+};
+
 struct ControlDict {
     double startTime = 0;
     double endTime = 1;
@@ -25,6 +38,7 @@ struct ControlDict {
     std::string startFrom = "startTime";
     std::vector<std::string> libs;
     int threads = 1;
+    AuditSettings audit;
 
     static ControlDict read(const Dict& dict);
 };

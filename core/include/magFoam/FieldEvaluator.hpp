@@ -88,6 +88,11 @@ public:
     // One line for logs: type and main settings.
     virtual std::string describe() const = 0;
 
+    // The relative force error per pair that the evaluator's settings promise
+    // (e.g. MBM's adaptive tolerance); 0 when they promise none. The energy
+    // audit of magFoam allows for it.
+    virtual double forceTolerance() const { return 0.0; }
+
     // The wrench on every body of a set from all the others in it: the scene
     // entry point (MagneticSystem calls it once per step). `out` is indexed
     // like `bodies`; only bodies listed in `active` take part, and with

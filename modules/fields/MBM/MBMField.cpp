@@ -159,6 +159,8 @@ public:
         return s.str();
     }
 
+    double forceTolerance() const override { return adaptive_ ? adaptiveSettings_.tolerance : 0.0; }
+
     // boundarySamples: the target samples taken by interaction() so far (cost
     // reports, e.g. magBench's table1 and table2). Adaptive only: pairs (pair
     // evaluations), pairSamplesMin/Max (samples of the cheapest and dearest

@@ -188,6 +188,9 @@ public:
         return (isNear ? *near_ : *far_).interaction(source, target);
     }
 
+    // The near tier's promise; the far tiers' errors fall with distance (dipoleTolerance).
+    double forceTolerance() const override { return std::max(near_->forceTolerance(), dipoleTolerance_); }
+
     std::string describe() const override {
         std::ostringstream os;
         os << "hybrid (switch " << switchName_ << ", threshold " << threshold_;

@@ -1,0 +1,76 @@
+// magFoam's per-step energy and motion audit (docs/dynamics.md#audit). A time
+// step that is too large for the magnetic stiffness of touching magnets does
+// not crash: it pumps energy into the bodies until they fly apart. The audit
+// names it while it happens, cheaply (no extra field evaluation: the step's
+// own wrenches carry the pair energies):
+// - energy: kinetic + gravitational + magnetic at the start of each step. It
+//   warns when the total rises above its start by more than
+//   energyRise x (the peak kinetic energy so far) plus what the field's
+//   tolerance allows (10 x tolerance x |magnetic energy|);
+// - motion: each dynamic body's travel in the step, and the arc its surface
+//   turns through (angle x bounding radius), against its smallest dimension
+//   (the smallest edge of its body-frame bounding box); it warns above
+//   `travel`.
+// Each warning names the body, the step and a time step that would be safe:
+// the smaller of travel x size / speed and 1/20 of the period of the magnetic
+// oscillation, from the stiffness the last two steps show (change of force
+// over change of position, of torque over change of angle). Once per episode:
+// a condition must stay clear for 100 steps before it warns again. With
+// `strict` (controlDict audit.strict, magFoam -strict) check() returns the
+// message as a stop instead. summary() logs the run's energy drift, its
+// highest speed and how many bodies are at rest at the end.
+#pragma once
+
+#include <magFoam/Body.hpp>
+#include <magFoam/ControlDict.hpp>
+#include <magFoam/Wrench.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace mag::solver {
+
+class StepAudit {
+public:
+    // fieldTolerance: FieldEvaluator::forceTolerance() (0: none promised).
+    StepAudit(const std::vector<Body>& bodies, const AuditSettings& settings, double fieldTolerance,
+              const Vec3& gravity);
+
+    // After step `step` (ending at t) of length dt: `before` is the bodies'
+    // state at its start, `bodies` at its end, `wrenches` those of the start.
+    // Logs a warning per new episode; returns the message to stop with when
+    // strict.
+    std::optional<std::string> check(long step, double t, double dt, const std::vector<BodyState>& before,
+                                     const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches);
+
+    // "Audit: ..." lines for the end of the run.
+    void summary(const std::vector<Body>& bodies) const;
+
+    // What the run saw (tests).
+    int warnings() const { return warnings_; }
+    double energyDrift() const; // (last - first total energy) / peak kinetic energy
+
+private:
+    struct Track {
+        double size = 0, radius = 0;     // smallest dimension, bounding radius (m)
+        double smallestInertia = 0;      // kg m^2, principal
+        bool havePrevious = false;
+        Vec3 previousPosition, previousForce, previousTorque;
+        Quat previousOrientation;
+        int quietSteps = 0;
+        bool warned = false;
+    };
+    AuditSettings settings_;
+    double tolerance_;
+    Vec3 gravity_;
+    std::vector<Track> tracks_;
+    bool haveStart_ = false;
+    double startEnergy_ = 0, lastEnergy_ = 0, peakKinetic_ = 0, highestRise_ = 0;
+    double maxSpeed_ = 0;
+    std::string fastest_;
+    int energyQuiet_ = 0, warnings_ = 0;
+    bool energyWarned_ = false;
+};
+
+} // namespace mag::solver
