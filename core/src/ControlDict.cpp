@@ -24,6 +24,11 @@ ControlDict ControlDict::read(const Dict& d) {
     if (c.endTime < c.startTime) d.fail("endTime", "endTime must not be before startTime");
     if (c.writeInterval <= 0) d.fail("writeInterval", "write interval must be positive (simulated seconds)");
     if (c.threads < 0) d.fail("threads", "threads must be >= 0 (0 = all cores)");
+    c.adjustTimeStep = d.get<bool>("adjustTimeStep", false);
+    c.maxDeltaT = d.get<double>("maxDeltaT", 100.0 * c.deltaT);
+    c.minDeltaT = d.get<double>("minDeltaT", 1e-3 * c.deltaT);
+    if (!(c.minDeltaT > 0)) d.fail("minDeltaT", "must be > 0 (seconds)");
+    if (!(c.maxDeltaT >= c.minDeltaT)) d.fail("maxDeltaT", "must be >= minDeltaT (seconds)");
     d.reportUnused();
     return c;
 }

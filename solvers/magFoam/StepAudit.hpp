@@ -47,6 +47,18 @@ public:
     // "Audit: ..." lines for the end of the run.
     void summary(const std::vector<Body>& bodies) const;
 
+    // A step that resolves every dynamic body's motion and magnetic
+    // oscillation in the state of `bodies` under `wrenches` (the adaptive
+    // step's proposal, docs/dynamics.md#adaptive-time-step): per body the
+    // smaller of the step in which the centre or the surface would travel
+    // travel / 2 x size (v dt + a dt^2, semi-implicit Euler, from the velocities and the magnetic
+    // force and torque; gravity and contacts are not counted) and 1/20 of 2 pi / omega, with
+    // omega^2 = max(|U| / I_min, |F| / (m size)) from the body's magnetic
+    // energy U and force F (a magnet's tilt stiffness in a field is |U|; its
+    // force changes on the scale of its size). Infinity when nothing moves or
+    // pulls.
+    double stableDeltaT(const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches) const;
+
     // What the run saw (tests).
     int warnings() const { return warnings_; }
     double energyDrift() const; // (last - first total energy) / peak kinetic energy

@@ -15,6 +15,7 @@ namespace {
 // The models' files in a time folder (ResultsWriter.hpp).
 constexpr const char* kInductionFile = "induction.yaml";
 constexpr const char* kRigidBodyFile = "rigidBody.yaml";
+constexpr const char* kTimeStepFile = "timeStep.yaml";
 
 template <class Clock> double seconds(typename Clock::time_point since) {
     return std::chrono::duration<double>(Clock::now() - since).count();
@@ -38,19 +39,31 @@ Start startRun(const Case& c, std::vector<Body>& bodies, InductionModel& inducti
         induction.readState(Dict::fromFile(file), bodies);
     if (const auto file = *folder / kRigidBodyFile; std::filesystem::exists(file))
         backend.readState(Dict::fromFile(file), bodies);
+    if (const auto file = *folder / kTimeStepFile; std::filesystem::exists(file)) {
+        const Dict d = Dict::fromFile(file);
+        s.lastDeltaT = d.get<double>("deltaT");
+        if (!(s.lastDeltaT > 0)) d.fail("deltaT", "the last step's length must be > 0 (seconds)");
+        d.reportUnused();
+    }
     return s;
 }
 
 std::vector<StateFile> modelStates(const InductionModel& induction, const RigidBodyBackend& backend,
-                                   const std::vector<Body>& bodies) {
+                                   const std::vector<Body>& bodies, double lastDeltaT) {
     std::ostringstream ind, rb;
     induction.writeState(ind, bodies);
     backend.writeState(rb, bodies);
-    return {{kInductionFile, ind.str()}, {kRigidBodyFile, rb.str()}};
+    const std::string dt = lastDeltaT > 0 ? "# adaptive steps: the last step's length (s)\ndeltaT: " +
+                                                formatExact(lastDeltaT) + "\n"
+                                          : std::string();
+    return {{kInductionFile, ind.str()}, {kRigidBodyFile, rb.str()}, {kTimeStepFile, dt}};
 }
 
 TimeLoop::TimeLoop(const ControlDict& control, const Start& start)
-    : dt_(control.deltaT), startTime_(start.time) {
+    : adaptive_(control.adjustTimeStep), dt_(control.deltaT), startTime_(start.time), endTime_(control.endTime),
+      time_(start.time), minDt_(control.minDeltaT), maxDt_(control.maxDeltaT), axis0_(control.startTime),
+      writeInterval_(control.writeInterval), start_(start.step), step_(start.step) {
+    if (adaptive_ && start.lastDeltaT > 0) dt_ = start.lastDeltaT;
     // On the axis of startTime (a fresh start, or a restart with the same
     // startTime and deltaT): the same times, bit for bit, as one long run.
     if (control.startTime + static_cast<double>(start.step) * dt_ == start.time)
@@ -58,13 +71,45 @@ TimeLoop::TimeLoop(const ControlDict& control, const Start& start)
     else
         baseTime_ = start.time, baseStep_ = start.step;
     const long n = std::max(0L, std::lround((control.endTime - start.time) / dt_));
-    firstStep_ = start.step + 1;
     lastStep_ = start.step + n;
     writeEvery_ = std::max(1L, std::lround(control.writeInterval / dt_));
 }
 
+bool TimeLoop::done() const { return adaptive_ ? !(time_ < endTime_) : step_ >= lastStep_; }
+
+double TimeLoop::begin(double proposal) {
+    if (!adaptive_) return dt_;
+    // The next write time on the axis startTime + k writeInterval after now
+    // (a time within 1e-9 of a step of one counts as on it), or endTime.
+    const double k = std::floor((time_ - axis0_) / writeInterval_ + 1e-9) + 1.0;
+    target_ = std::min(axis0_ + k * writeInterval_, endTime_);
+    const double remaining = target_ - time_;
+    dt_ = std::clamp(proposal > 0 ? proposal : dt_, minDt_, maxDt_);
+    onTarget_ = dt_ >= remaining * (1.0 - 1e-9);
+    if (onTarget_) dt_ = remaining;
+    else if (dt_ > 0.5 * remaining) dt_ = 0.5 * remaining; // no sliver before the write time
+    return dt_;
+}
+
+double TimeLoop::endOfStep() const {
+    if (!adaptive_) return baseTime_ + static_cast<double>(step_ + 1 - baseStep_) * dt_;
+    return onTarget_ ? target_ : time_ + dt_;
+}
+
+void TimeLoop::end() {
+    ++step_;
+    if (!adaptive_) {
+        time_ = baseTime_ + static_cast<double>(step_ - baseStep_) * dt_;
+        write_ = step_ % writeEvery_ == 0 || step_ == lastStep_;
+        return;
+    }
+    time_ = onTarget_ ? target_ : time_ + dt_;
+    write_ = onTarget_;
+}
+
 RunStatistics::RunStatistics(const TimeLoop& loop, bool softBodies)
-    : steps_(loop.steps()), soft_(softBodies), start_(Clock::now()), lastReport_(start_) {}
+    : startTime_(loop.startTime()), endTime_(loop.endTime()), soft_(softBodies), start_(Clock::now()),
+      lastReport_(start_) {}
 
 void RunStatistics::stopTimer() {
     if (!phase_) return;
@@ -100,13 +145,13 @@ void RunStatistics::induction(long step, const InductionReport& ind) {
 void RunStatistics::progress(double t, long step) {
     if (seconds<Clock>(lastReport_) <= 5.0) return;
     lastReport_ = Clock::now();
-    const double rate = done_ / seconds<Clock>(start_);
+    const double wall = seconds<Clock>(start_), rate = done_ / wall;
+    const double eta = t > startTime_ ? (endTime_ - t) * wall / (t - startTime_) : 0.0;
     std::string induction;
     if (soft_ && stepsSinceReport_ > 0)
         induction = fmt::format("  induction {:.1f} sweeps/step", double(sweepsSinceReport_) / stepsSinceReport_);
     sweepsSinceReport_ = stepsSinceReport_ = 0;
-    spdlog::info("t = {:.6g} s  step {}  {:.1f} steps/s  ETA {:.0f} s{}", t, step, rate, (steps_ - done_) / rate,
-                 induction);
+    spdlog::info("t = {:.6g} s  step {}  {:.1f} steps/s  ETA {:.0f} s{}", t, step, rate, eta, induction);
 }
 
 void RunStatistics::summary() const {

@@ -29,6 +29,7 @@ struct Start {
     double time = 0;
     long step = 0;
     std::optional<std::filesystem::path> folder;
+    double lastDeltaT = 0; // adaptive steps: the last step's length (0: none)
 };
 
 // startTime, or with startFrom: latestTime the newest time folder: its
@@ -36,31 +37,47 @@ struct Start {
 // file, where present, to its readState. Logs "Restarting from ...".
 Start startRun(const Case& c, std::vector<Body>& bodies, InductionModel& induction, RigidBodyBackend& backend);
 
-// The models' restart files for ResultsWriter::write (empty text: no state).
+// The models' restart files for ResultsWriter::write (empty text: no state),
+// and with adaptive steps the last step's length (timeStep.yaml).
 std::vector<StateFile> modelStates(const InductionModel& induction, const RigidBodyBackend& backend,
-                                   const std::vector<Body>& bodies);
+                                   const std::vector<Body>& bodies, double lastDeltaT = 0);
 
-// Steps are numbered from startTime (step 0) on, also across restarts: step
-// n ends at time startTime + n deltaT, and is written when n is a multiple
-// of writeInterval / deltaT, or the last step of the run. A restart whose
-// time is not on that axis (deltaT or startTime changed) starts a new one
-// at its time.
+// Steps are numbered from startTime (step 0) on, also across restarts.
+// Fixed steps (the default): step n ends at time startTime + n deltaT, and is
+// written when n is a multiple of writeInterval / deltaT, or the last step of
+// the run. A restart whose time is not on that axis (deltaT or startTime
+// changed) starts a new one at its time.
+// Adaptive steps (adjustTimeStep: true, docs/dynamics.md#adaptive-time-step):
+// each step's length is proposed by the solver from the bodies' motion and
+// magnetic stiffness, limited to [minDeltaT, maxDeltaT] and shortened so that
+// a step ends exactly on every write time (startTime + k writeInterval) and on
+// endTime; the step before one is halved rather than leaving a sliver.
 class TimeLoop {
 public:
     TimeLoop(const ControlDict& control, const Start& start);
 
-    long firstStep() const { return firstStep_; }
-    long lastStep() const { return lastStep_; }
-    long steps() const { return lastStep_ - firstStep_ + 1; }
-    double deltaT() const { return dt_; }
+    bool adaptive() const { return adaptive_; }
+    bool done() const;
+    // Begin the next step and return its length: deltaT, or (adaptive) the
+    // proposal limited as above.
+    double begin(double proposal = 0);
+    // The step begun is done: its number and end time become current.
+    void end();
+    double endOfStep() const;                 // the end time of the step begun
+    long step() const { return step_; }       // the last step ended
+    double time() const { return time_; }     // at the end of the last step ended
+    double deltaT() const { return dt_; }     // of the step begun (or the last)
+    bool isWriteTime() const { return write_; } // the step just ended is written
     double startTime() const { return startTime_; }
-    // Time at the end of step n (n = firstStep() - 1: the start).
-    double time(long step) const { return baseTime_ + static_cast<double>(step - baseStep_) * dt_; }
-    bool isWriteTime(long step) const { return step % writeEvery_ == 0 || step == lastStep_; }
+    double endTime() const { return endTime_; }
+    long fixedSteps() const { return lastStep_ - start_; } // fixed steps only
 
 private:
-    double dt_, startTime_, baseTime_;
-    long baseStep_, firstStep_, lastStep_, writeEvery_;
+    bool adaptive_;
+    double dt_, startTime_, endTime_, baseTime_, time_, minDt_, maxDt_, axis0_, writeInterval_;
+    long baseStep_, start_, lastStep_, writeEvery_, step_;
+    bool write_ = false, onTarget_ = false;
+    double target_ = 0;
 };
 
 // Timings, induction statistics and the log lines about the run's progress.
@@ -83,7 +100,7 @@ private:
     using Clock = std::chrono::steady_clock;
     void stopTimer();
 
-    const long steps_;
+    const double startTime_, endTime_;
     const bool soft_;
     Clock::time_point start_, lastReport_, phaseStart_;
     std::optional<Phase> phase_;

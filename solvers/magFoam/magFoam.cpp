@@ -67,12 +67,22 @@ void warnOverlaps(const Case& c, const std::vector<Body>& bodies) {
 
 void describeRun(const Case& c, const MagneticSystem& magnets, const RigidBodyBackend& backend,
                  const solver::TimeLoop& loop, int threads) {
-    spdlog::info("magFoam: {} bodies, {} steps of {} s from t = {}, {} thread(s)", c.bodies().size(), loop.steps(),
-                 loop.deltaT(), loop.startTime(), threads);
+    const ControlDict& ctl = c.control();
+    if (loop.adaptive())
+        spdlog::info("magFoam: {} bodies, adaptive steps from {} s (minDeltaT {} s, maxDeltaT {} s) from t = {} to {}, "
+                     "{} thread(s)",
+                     c.bodies().size(), loop.deltaT(), ctl.minDeltaT, ctl.maxDeltaT, loop.startTime(), loop.endTime(),
+                     threads);
+    else
+        spdlog::info("magFoam: {} bodies, {} steps of {} s from t = {}, {} thread(s)", c.bodies().size(),
+                     loop.fixedSteps(), loop.deltaT(), loop.startTime(), threads);
     spdlog::info("  field:      {}", magnets.fieldEvaluator().describe());
     spdlog::info("  induction:  {}", c.hasSoftBodies() ? magnets.inductionModel().describe() : "none (no soft bodies)");
     spdlog::info("  rigid body: {}", backend.describe());
 }
+
+// Adaptive steps: at most 20 % longer than the last one.
+constexpr double kMaxGrowth = 1.2;
 
 int run(const ArgList& args) {
     Case c = Case::read(args.caseDir(), args.schemesFile());
@@ -87,15 +97,17 @@ int run(const ArgList& args) {
     // Start: from startTime, or from the newest time folder (bodies and models).
     const solver::Start start = solver::startRun(c, bodies, magnets.inductionModel(), *backend);
     if (!start.folder) warnOverlaps(c, bodies);
-    const solver::TimeLoop loop(c.control(), start);
+    solver::TimeLoop loop(c.control(), start);
     ResultsWriter writer(c.dir(), start.folder ? std::optional<double>(start.time) : std::nullopt);
-    auto write = [&](const std::vector<Body>& state, long step, bool withModels) {
-        writeResults(writer, magnets, state, gravity, loop.time(step), step,
-                     withModels ? solver::modelStates(magnets.inductionModel(), *backend, state)
+    double lastDeltaT = start.lastDeltaT > 0 ? start.lastDeltaT : c.control().deltaT;
+    auto write = [&](const std::vector<Body>& state, double t, long step, bool withModels) {
+        writeResults(writer, magnets, state, gravity, t, step,
+                     withModels ? solver::modelStates(magnets.inductionModel(), *backend, state,
+                                                      loop.adaptive() ? lastDeltaT : 0.0)
                                 : std::vector<StateFile>{});
     };
     describeRun(c, magnets, *backend, loop, threads);
-    if (!start.folder) write(bodies, start.step, true);
+    if (!start.folder) write(bodies, loop.time(), loop.step(), true);
 
     std::signal(SIGINT, onSignal);
     std::signal(SIGTERM, onSignal);
@@ -106,35 +118,43 @@ int run(const ArgList& args) {
     // The last good per-step state (poses, velocities, magnetizations), to write
     // on a non-finite one; the bodies' fixed models are not copied every step.
     std::vector<BodyState> lastGood(bodies.size());
-    for (long step = loop.firstStep(); step <= loop.lastStep(); ++step) {
+    while (!loop.done()) {
         std::copy(bodies.begin(), bodies.end(), lastGood.begin());
+        const double before = loop.time();
+        const long step = loop.step() + 1;
 
         // Algorithm 1: induction loop (only with soft bodies), then wrenches.
         stats.start(solver::RunStatistics::Phase::magnetic);
         const MagneticSystem::Step magnetic = magnets.step(bodies);
-        if (soft) writer.writeInduction(loop.time(step), step, magnetic.induction);
-        stats.induction(step, magnetic.induction);
         const std::vector<Wrench>& wrenches = magnetic.wrenches;
+        // The step's length: fixed, or what the motion and stiffness allow now.
+        const double proposal =
+            loop.adaptive() ? std::min(kMaxGrowth * lastDeltaT, audit.stableDeltaT(bodies, wrenches)) : 0.0;
+        const double dt = loop.begin(proposal);
+        const double t = loop.endOfStep();
+        if (soft) writer.writeInduction(t, step, magnetic.induction);
+        stats.induction(step, magnetic.induction);
 
         // The rigid-body step under those wrenches.
         stats.start(solver::RunStatistics::Phase::rigidBody);
-        if (!firstNonFinite(bodies, &wrenches)) backend->step(bodies, wrenches, loop.deltaT());
+        if (!firstNonFinite(bodies, &wrenches)) backend->step(bodies, wrenches, dt);
         stats.stepDone();
 
         if (const Body* bad = firstNonFinite(bodies, &wrenches)) {
             std::vector<Body> good = bodies;
             for (std::size_t i = 0; i < good.size(); ++i) static_cast<BodyState&>(good[i]) = lastGood[i];
-            write(good, step - 1, false);  // the models hold the bad step's state
+            write(good, before, step - 1, false);  // the models hold the bad step's state
             throw StateError("non-finite state or wrench of body '" + bad->name + "' in step " +
-                             std::to_string(step) + " (t = " + std::to_string(loop.time(step)) +
-                             " s); last good state written to " + timeName(loop.time(step - 1)) + "/");
+                             std::to_string(step) + " (t = " + std::to_string(t) +
+                             " s); last good state written to " + timeName(before) + "/");
         }
-        const double t = loop.time(step);
-        if (const auto stop = audit.check(step, t, loop.deltaT(), lastGood, bodies, wrenches)) {
-            write(bodies, step, true);
+        loop.end();
+        lastDeltaT = dt;
+        if (const auto stop = audit.check(step, t, dt, lastGood, bodies, wrenches)) {
+            write(bodies, t, step, true);
             throw StateError(*stop + " (audit.strict; state written to " + timeName(t) + "/)");
         }
-        if (loop.isWriteTime(step) || stopRequested) write(bodies, step, true);
+        if (loop.isWriteTime() || stopRequested) write(bodies, t, step, true);
         if (stopRequested) {
             spdlog::info("Stopped by signal at t = {}; state written to {}/", t, timeName(t));
             break;

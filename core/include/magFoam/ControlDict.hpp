@@ -8,6 +8,10 @@
 //   libs: []              # extra plugin libraries: bare names or paths
 //   threads: 1            # worker threads for the pair wrenches (0 = all cores);
 //                         # results are bit-identical for any count (Threads.hpp)
+//   adjustTimeStep: false # magFoam chooses each step (docs/dynamics.md#adaptive-time-step):
+//   maxDeltaT: 0.01       #   at most this (s), default deltaT x 100
+//   minDeltaT: 1e-7       #   at least this (s), default deltaT / 1000
+//                         #   deltaT is then the first step; write times are hit exactly
 //   audit:                # magFoam's per-step energy and motion audit (docs/dynamics.md)
 //     energyRise: 0.05    # warn when the total energy exceeds its start by this
 //                         # fraction of the peak kinetic energy (plus what the
@@ -39,6 +43,8 @@ struct ControlDict {
     std::vector<std::string> libs;
     int threads = 1;
     AuditSettings audit;
+    bool adjustTimeStep = false;
+    double maxDeltaT = 0, minDeltaT = 0;
 
     static ControlDict read(const Dict& dict);
 };
