@@ -20,7 +20,7 @@ def series(folder):
 
 
 rows = (
-    ("rigid contacts (ODE default), dt = 0.1 ms",
+    ("rigid contacts (ODE default), adaptive steps",
      ((here, "MBM, Amperian overlap"), (here / "charge", "MBM, charge overlap"), (here / "EDM", "EDM n=5"))),
     ("contacts allowing penetration (cfm 1e-2), dt = 1 ms",
      ((here / "penetrating-MBM", "MBM, Amperian overlap"), (here / "penetrating-EDM", "EDM n=5"))),
