@@ -142,7 +142,7 @@ void RunStatistics::induction(long step, const InductionReport& ind) {
     }
 }
 
-void RunStatistics::progress(double t, long step) {
+void RunStatistics::progress(double t, long step, double deltaT) {
     if (seconds<Clock>(lastReport_) <= 5.0) return;
     lastReport_ = Clock::now();
     const double wall = seconds<Clock>(start_), rate = done_ / wall;
@@ -151,7 +151,8 @@ void RunStatistics::progress(double t, long step) {
     if (soft_ && stepsSinceReport_ > 0)
         induction = fmt::format("  induction {:.1f} sweeps/step", double(sweepsSinceReport_) / stepsSinceReport_);
     sweepsSinceReport_ = stepsSinceReport_ = 0;
-    spdlog::info("t = {:.6g} s  step {}  {:.1f} steps/s  ETA {:.0f} s{}", t, step, rate, eta, induction);
+    const std::string dt = deltaT > 0 ? fmt::format("  deltaT {:.3g} s", deltaT) : std::string();
+    spdlog::info("t = {:.6g} s  step {}{}  {:.1f} steps/s  ETA {:.0f} s{}", t, step, dt, rate, eta, induction);
 }
 
 void RunStatistics::summary() const {

@@ -91,8 +91,9 @@ public:
     void stepDone();
     // A step's induction report: summed for the log; warns when unconverged.
     void induction(long step, const InductionReport& report);
-    // Every 5 s: "t = ... s  step ...  steps/s  ETA ... s" (+ sweeps per step).
-    void progress(double t, long step);
+    // Every 5 s: "t = ... s  step ...  steps/s  ETA ... s" (+ the step's
+    // length with adaptive steps, + induction sweeps per step).
+    void progress(double t, long step, double deltaT = 0);
     // "End: ... steps in ... s; ms per step: ..." and the induction summary.
     void summary() const;
 

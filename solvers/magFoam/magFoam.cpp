@@ -159,7 +159,7 @@ int run(const ArgList& args) {
             spdlog::info("Stopped by signal at t = {}; state written to {}/", t, timeName(t));
             break;
         }
-        stats.progress(t, step);
+        stats.progress(t, step, loop.adaptive() ? dt : 0.0);
     }
     stats.summary();
     audit.summary(bodies);
