@@ -3,13 +3,17 @@
 the exact one-sided Akoun-Yonnet force (the limit from separation, evaluated at a
 1e-12 m gap: the closed form is continuous there up to O(1e-10)), and the errors."""
 import csv
+import os
 import pathlib
 import sys
 
 import matplotlib.pyplot as plt
 
 here = pathlib.Path(__file__).resolve().parent
-sys.path.insert(0, str(here.parent / "twoCubes"))
+# The closed form lives in the twoCubes tutorial of magFoam (MAG_ROOT: set by
+# etc/RunFunctions, so that a copy of this case elsewhere finds it too).
+root = pathlib.Path(os.environ.get("MAG_ROOT", here.parent.parent))
+sys.path.insert(0, str(root / "tutorials" / "twoCubes"))
 import akounYonnet  # noqa: E402
 
 runs = [("adaptive", "adaptive 1e-4, charge (default)", "-"),
