@@ -75,6 +75,12 @@ TEST_CASE("bad bodies give file, key and expectation", "[case][badInput]") {
         CHECK_THROWS_WITH(Case::read(c.dir()), Contains("constant/bodies.yaml:2:") && Contains("velocty") &&
                                                    Contains("did you mean 'velocity'"));
     }
+    SECTION("a required key misspelt") {
+        oneBody(c, "{name: a, geometry: {box: {size: [1, 1, 1]}}, material: N42, magnetisation: [0, 0, 1], "
+                   "position: [0, 0, 0]}");
+        CHECK_THROWS_WITH(Case::read(c.dir()), Contains("constant/bodies.yaml:2:") &&
+                                                   Contains("did you mean 'magnetization'"));
+    }
     SECTION("NaN in a position") {
         oneBody(c, "{name: a, geometry: {box: {size: [1, 1, 1]}}, material: N42, magnetization: [0, 0, 1], "
                    "position: [0, .nan, 0]}");

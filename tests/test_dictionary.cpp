@@ -55,6 +55,16 @@ TEST_CASE("unknown key: position, suggestion and valid keys", "[dictionary][badI
                                             Contains("did you mean 'deltaT'") && Contains("endTime"));
 }
 
+TEST_CASE("a missing required key names a misspelt one beside it", "[dictionary][badInput]") {
+    const Dict d = Dict::fromString("name: a\nmagnetisation: [0, 0, 1]\n", "constant/bodies.yaml");
+    (void)d.get<std::string>("name");
+    CHECK_THROWS_WITH(d.get<mag::Vec3>("magnetization"),
+                      Contains("magnetization: required key is missing") && Contains("constant/bodies.yaml:2:1") &&
+                          Contains("unknown key 'magnetisation': did you mean 'magnetization'?"));
+    // Nothing alike: the plain message.
+    CHECK_THROWS_WITH(d.get<double>("density"), Contains("required key is missing") && !Contains("did you mean"));
+}
+
 TEST_CASE("nested key paths and duplicate keys", "[dictionary][badInput]") {
     const Dict d = Dict::fromString("bodies:\n  - name: a\n    geometry: {box: {size: [1, x, 1]}}\n", "b.yaml");
     const auto bodies = d.list("bodies");

@@ -145,7 +145,26 @@ YAML::Node Dict::value(const std::string& key) const {
 
 YAML::Node Dict::required(const std::string& key) const {
     YAML::Node v = value(key);
-    if (!v.IsDefined()) fail(key, "required key is missing");
+    if (!v.IsDefined()) {
+        // A key of this mapping that nothing has asked for and that is spelt
+        // nearly like the missing one is almost always it, misspelt.
+        std::string hint;
+        std::size_t best = std::max<std::size_t>(3, key.size() / 4 + 1);
+        if (node_.IsMap())
+            for (const auto& kv : node_) {
+                const std::string k = kv.first.Scalar();
+                if (asked_->count(k)) continue;
+                if (const std::size_t d = editDistance(k, key); d < best) best = d, hint = k;
+            }
+        if (!hint.empty()) {
+            YAML::Node at;
+            for (const auto& kv : node_)
+                if (kv.first.Scalar() == hint) at = kv.first;
+            fail(key, "required key is missing; " + markText(state_->file, at.Mark()) + " has the unknown key '" +
+                          hint + "': did you mean '" + key + "'?");
+        }
+        fail(key, "required key is missing");
+    }
     return v;
 }
 
