@@ -31,6 +31,13 @@ Quat readOrientation(const Dict& body) {
         const Vec3 axis = o.get<Vec3>("axis");
         const double angle = o.get<double>("angle");  // degrees
         if (axis.norm() < 1e-300) o.fail("axis", "rotation axis has zero length");
+        // A non-integer angle within 0.1 % of a multiple of pi/12 (15 deg in
+        // radians) up to 2 pi was almost certainly meant in radians.
+        const double k = angle / (pi / 12);
+        if (angle != std::round(angle) && std::abs(angle) <= 2 * pi + 1e-9 && std::round(k) != 0 &&
+            std::abs(k - std::round(k)) < 1e-3 * std::abs(k))
+            o.warn("angle", fmt::format("{:g} looks like radians ({:g} rad = {:g} deg); angles here are in degrees",
+                                        angle, angle, angle * 180 / pi));
         q = Quat(Eigen::AngleAxisd(angle * pi / 180.0, axis.normalized()));
     }
     o.reportUnused();
@@ -73,6 +80,17 @@ std::vector<Body> readBodies(const Dict& dict, const std::map<std::string, Mater
         }
 
         body.position = b.get<Vec3>("position");
+        // Plausibility (warnings; docs/case-reference.md#plausibility).
+        const double across = 2 * body.shape->boundingRadius;
+        if (across > 1.0)
+            b.warn("geometry", fmt::format("body '{}' is {:.3g} m across: a mesh in mm without scale: 0.001?",
+                                           body.name, across));
+        else if (across > 0 && across < 1e-5)
+            b.warn("geometry", fmt::format("body '{}' is {:.3g} m across (below 10 um): a scale that is too small?",
+                                           body.name, across));
+        if (body.position.norm() > 10.0)
+            b.warn("position", fmt::format("{:.3g} m from the origin: in mm? Positions are in metres",
+                                           body.position.norm()));
         body.orientation = readOrientation(b);
         body.velocity = b.get<Vec3>("velocity", Vec3::Zero());
         body.angularVelocity = b.get<Vec3>("angularVelocity", Vec3::Zero());

@@ -1,6 +1,7 @@
 #include "magFoam/Dictionary.hpp"
 
 #include "magFoam/Error.hpp"
+#include "magFoam/Log.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -129,6 +130,10 @@ std::string Dict::where(const std::string& key) const {
 
 void Dict::fail(const std::string& key, const std::string& message) const {
     throw InputError(where(key) + ": " + keyPath(key) + ": " + message);
+}
+
+void Dict::warn(const std::string& key, const std::string& message) const {
+    spdlog::warn("{}: {}: {}", where(key), keyPath(key), message);
 }
 
 void Dict::failHere(const std::string& message) const {

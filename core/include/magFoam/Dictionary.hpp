@@ -69,6 +69,9 @@ public:
     // An InputError for `key` with position and key path: "file:l:c: path.key: msg".
     [[noreturn]] void fail(const std::string& key, const std::string& message) const;
     [[noreturn]] void failHere(const std::string& message) const;
+    // A warning in the same form (the log): a value that is allowed but
+    // implausible, e.g. a unit slip (docs/case-reference.md#plausibility).
+    void warn(const std::string& key, const std::string& message) const;
 
     const YAML::Node& node() const { return node_; }
 
