@@ -56,13 +56,14 @@ TEST_CASE("overlaps: interpenetrating bodies are reported with their depth", "[o
     CHECK((list[1].a == 1 && list[1].b == 2));
 }
 
-TEST_CASE("overlaps: two bars crossing like a plus sign, no vertex inside, are found by their edges", "[overlap]") {
+TEST_CASE("overlaps: two bars crossing like a plus sign, no vertex inside, are found", "[overlap]") {
     const auto bar = boxShape(Vec3(0.03, 0.002, 0.002));
     const auto x = magnet("x", bar, Vec3::Zero(), Vec3(1, 0, 0));
     const auto y = magnet("y", bar, Vec3(0, 0, 0.0005), Vec3(1, 0, 0), axisAngle(90, Vec3(0, 0, 1)));
     const auto found = mag::findOverlaps(two(x, y));
     REQUIRE(found.size() == 1);
-    CHECK(found[0].depth == 0);  // no vertex of one inside the other
+    // No vertex of one is inside the other; the centre of y is, 0.5 mm from x's top.
+    CHECK(found[0].depth == Approx(0.0005).epsilon(1e-9));
     // Lifted clear of each other: none.
     CHECK(mag::findOverlaps(two(x, magnet("y", bar, Vec3(0, 0, 0.0021), Vec3(1, 0, 0), axisAngle(90, Vec3(0, 0, 1)))))
               .empty());

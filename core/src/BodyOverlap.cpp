@@ -1,5 +1,6 @@
 #include "magFoam/BodyOverlap.hpp"
 
+#include "magFoam/Log.hpp"
 #include "magFoam/SurfaceMesh.hpp"
 
 #include <algorithm>
@@ -29,6 +30,9 @@ double deepestInside(const Body& in, const Body& shell, double tol) {
     std::vector<Vec3> probes = verticesIn(in, shell);
     for (const auto& t : in.shape->mesh.triangles)
         probes.push_back((probes[t[0]] + probes[t[1]] + probes[t[2]]) / 3.0);
+    // And its centre of mass (the origin of its body frame): two identical bodies
+    // at the same place have every vertex and centroid on the other's surface.
+    probes.push_back(shell.orientation.inverse() * (in.position - shell.position));
     double deepest = 0;
     for (const Vec3& p : probes) {
         if (windingNumber(mesh, p) < 0.5) continue;  // outside
@@ -80,6 +84,17 @@ std::vector<BodyOverlap> findOverlaps(const std::vector<Body>& bodies, double re
             if (depth > 0 || edgeCrossesFace(a, b, tol) || edgeCrossesFace(b, a, tol)) out.push_back({i, j, depth});
         }
     return out;
+}
+
+std::size_t warnOverlaps(const std::vector<Body>& bodies, const std::string& bodiesFile,
+                         const std::string& consequence) {
+    const std::vector<BodyOverlap> overlaps = findOverlaps(bodies);
+    for (const BodyOverlap& o : overlaps) {
+        const std::string how = o.depth > 0 ? fmt::format("{:.3g} m deep", o.depth) : "edges through faces";
+        spdlog::warn("bodies '{}' and '{}' overlap ({}; {}): {}; check their positions", bodies[o.a].name,
+                     bodies[o.b].name, how, bodiesFile, consequence);
+    }
+    return overlaps.size();
 }
 
 } // namespace mag

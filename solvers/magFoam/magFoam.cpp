@@ -54,17 +54,6 @@ void writeResults(ResultsWriter& writer, const MagneticSystem& magnets, const st
     writer.write(t, step, bodies, w, bodyEnergies(bodies, gravity, magnetic), states);
 }
 
-// Bodies inside each other at the start: named, with how deep; the run goes on
-// (MBM is defined there), but a contact solver will push them apart.
-void warnOverlaps(const Case& c, const std::vector<Body>& bodies) {
-    for (const BodyOverlap& o : findOverlaps(bodies)) {
-        const std::string how = o.depth > 0 ? fmt::format("a vertex {:.3g} m deep", o.depth) : "edges through faces";
-        spdlog::warn("bodies '{}' and '{}' overlap at the start ({}; {}): a contact solver pushes them apart, "
-                     "adding kinetic energy; check their positions",
-                     bodies[o.a].name, bodies[o.b].name, how, (c.dir() / "constant" / "bodies.yaml").string());
-    }
-}
-
 void describeRun(const Case& c, const MagneticSystem& magnets, const RigidBodyBackend& backend,
                  const solver::TimeLoop& loop, int threads) {
     const ControlDict& ctl = c.control();
@@ -96,7 +85,11 @@ int run(const ArgList& args) {
 
     // Start: from startTime, or from the newest time folder (bodies and models).
     const solver::Start start = solver::startRun(c, bodies, magnets.inductionModel(), *backend);
-    if (!start.folder) warnOverlaps(c, bodies);
+    // Bodies inside each other at the start: named, with how deep; the run goes
+    // on (MBM is defined there), but a contact solver will push them apart.
+    if (!start.folder)
+        warnOverlaps(bodies, (c.dir() / "constant" / "bodies.yaml").string(),
+                     "a contact solver pushes them apart at the start, adding kinetic energy");
     solver::TimeLoop loop(c.control(), start);
     ResultsWriter writer(c.dir(), start.folder ? std::optional<double>(start.time) : std::nullopt);
     double lastDeltaT = start.lastDeltaT > 0 ? start.lastDeltaT : c.control().deltaT;

@@ -6,24 +6,32 @@
 
 #include "magFoam/Body.hpp"
 
+#include <string>
 #include <vector>
 
 namespace mag {
 
 struct BodyOverlap {
     std::size_t a, b;  // indices, a < b
-    // Deepest vertex or face centroid of one body inside the other (m; its
-    // distance to the other's surface); 0 when only edges cross faces.
+    // Deepest vertex, face centroid or centre of mass of one body inside the
+    // other (m; its distance to the other's surface); 0 when only edges cross faces.
     double depth;
 };
 
 // Pairs whose world meshes interpenetrate by more than tol = relTol * max(R_a,
 // R_b) (bounding radii): a vertex or face centroid of one inside the other
-// (winding number) and farther than tol from its surface, or an edge of one crossing a face of the
+// (winding number) and farther than tol from its surface (its centre of mass
+// too: identical bodies at one place), or an edge of one crossing a face of the
 // other with both ends and the crossing point more than tol from the face's
 // plane and edges. Bodies that touch (a vertex on a face, faces flush) are not
 // reported. Cost: vertices x triangles for each pair whose bounding spheres
 // overlap; meant for the start of a run.
 std::vector<BodyOverlap> findOverlaps(const std::vector<Body>& bodies, double relTol = 1e-6);
+
+// One warning per overlapping pair: "bodies 'a' and 'b' overlap (0.001 m deep, or
+// edges through faces; <bodiesFile>): <consequence>; check their positions".
+// Returns the count.
+std::size_t warnOverlaps(const std::vector<Body>& bodies, const std::string& bodiesFile,
+                         const std::string& consequence);
 
 } // namespace mag

@@ -7,6 +7,7 @@
 // Exit status: 0 all usable, 1 a mesh unusable or unreadable (or a case
 // error), 2 usage error.
 #include <magFoam/ArgList.hpp>
+#include <magFoam/BodyOverlap.hpp>
 #include <magFoam/Case.hpp>
 #include <magFoam/Error.hpp>
 #include <magFoam/MassProperties.hpp>
@@ -172,7 +173,10 @@ int checkCase(const std::filesystem::path& dir) {
         std::cout << "magCheckMesh: " << unusable << " of " << n << " meshes UNUSABLE\n";
         return 1;
     }
-    mag::Case::read(dir);  // the rest of the case (materials, poses, ...) as the solver sees it
+    // The rest of the case (materials, poses, ...) as the solver sees it.
+    const mag::Case c = mag::Case::read(dir);
+    mag::warnOverlaps(c.bodies(), (dir / "constant" / "bodies.yaml").string(),
+                      "a contact solver pushes them apart at the start of magFoam");
     std::cout << "magCheckMesh: all " << n << " meshes OK; case " << dir.string() << " reads cleanly\n";
     return 0;
 }

@@ -7,6 +7,7 @@
 // Writes postProcessing/forces.csv (world frame; torque about each body's
 // centre of mass = magnetic (Eq. 17) + mechanical (Eq. 18)) and prints a table.
 #include <magFoam/ArgList.hpp>
+#include <magFoam/BodyOverlap.hpp>
 #include <magFoam/Case.hpp>
 #include <magFoam/Error.hpp>
 #include <magFoam/Log.hpp>
@@ -61,6 +62,8 @@ int run(const ArgList& args) {
     spdlog::info("magForces: case {}, {} bodies, {} thread(s), field: {}", args.caseDir().string(), c.bodies().size(),
                  threads, system.fieldEvaluator().describe());
 
+    warnOverlaps(c.bodies(), (c.dir() / "constant" / "bodies.yaml").string(),
+                 "their forces follow the overlap model (docs/physics.md#overlap-models), not a contact");
     const auto forcesFile = c.dir() / "system/forcesDict.yaml";
     std::optional<Sweep> sweep;
     if (std::filesystem::exists(forcesFile)) sweep = readSweep(c, Dict::fromFile(forcesFile));
