@@ -5,6 +5,8 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <iterator>
+#include <vector>
 
 #include "oracles/akounYonnet.hpp"
 #include "oracles/chargeQuadrature.hpp"
@@ -35,6 +37,19 @@ Matrix3d rotation(double angle, const Vector3d& axis) {
 Cuboid cube(const Vector3d& c, const Matrix3d& R = Matrix3d::Identity()) {
     return Cuboid{c, Vector3d(h, h, h), Vector3d(0, 0, M1T), R};
 }
+
+// Parallel boxes (full sizes s1 at the origin, s2 at c2), polarizations J1, J2 (T) along z.
+struct Pair {
+    Vector3d s1, s2, c2;
+    double J1, J2;
+};
+// 1 cm, 1 T cubes touching face to face: the contact placements both parallel tests use.
+const Pair kTouchingCubes[] = {
+    {cm3, cm3, Vector3d(0, 0, 0.01), 1, 1},          // coaxial
+    {cm3, cm3, Vector3d(0.003, 0.002, 0.01), 1, 1},  // offset (3, 2) mm
+    {cm3, cm3, Vector3d(0.005, 0.005, 0.01), 1, 1},  // offset (5, 5) mm
+    {cm3, cm3, Vector3d(0.01, 0, 0.01), 1, 1},       // edge to edge
+};
 
 // the rotations of the reference table
 const Matrix3d Rz30 = rotation(pi / 6, Vector3d::UnitZ());
@@ -108,18 +123,14 @@ TEST_CASE("Akoun-Yonnet one-sided: coaxial contact value and the contact jump", 
 
 TEST_CASE("Akoun-Yonnet one-sided: the limit of small separations along the line of centres",
           "[oracle][AY][contact]") {
-    struct Pair { Vector3d s1, s2, c2; double J1, J2; };
-    const Pair pairs[] = {
-        {cm3, cm3, Vector3d(0, 0, 0.01), 1, 1},                // coaxial
-        {cm3, cm3, Vector3d(0.003, 0.002, 0.01), 1, 1},        // offset (3, 2) mm
-        {cm3, cm3, Vector3d(0.005, 0.005, 0.01), 1, 1},        // offset (5, 5) mm
-        {cm3, cm3, Vector3d(0.01, 0, 0.01), 1, 1},             // edge to edge
+    std::vector<Pair> pairs(std::begin(kTouchingCubes), std::end(kTouchingCubes));
+    pairs.insert(pairs.end(), {
         {cm3, cm3, Vector3d(0.002, -0.003, -0.01), 1, -0.7},   // below, opposite
         {cm3, cm3, Vector3d(0.01, 0.003, 0), 1, 1},            // side by side (d_z = 0)
         {cm3, Vector3d(0.01, 0.01, 0.02), Vector3d(0.01, 0.003, 0.005), 1, 1},  // shared top plane
         {Vector3d(0.02, 0.012, 0.006), Vector3d(0.012, 0.02, 0.006), Vector3d(0.004, -0.004, 0.006), 0.38, 0.38},
         {cm3, Vector3d(0.01, 0.01, 0.015), Vector3d(0.003, -0.004, 0.0125), 1, 1},  // rounding of 0.0125-0.0075
-    };
+    });
     for (const Pair& pr : pairs) {
         const Vector3d F0 = oracle::akounYonnetForceOneSided(pr.s1, Vector3d::Zero(), pr.s2, pr.c2, pr.J1, pr.J2);
         // c2 + t c2 with t such that the gap along the line of centres is 1 nm / 10 nm
@@ -193,15 +204,11 @@ TEST_CASE("contact quadrature: separated parallel cubes equal Akoun-Yonnet", "[o
 
 TEST_CASE("contact quadrature: touching parallel boxes equal the one-sided Akoun-Yonnet",
           "[oracle][contact][AY]") {
-    struct Pair { Vector3d s1, s2, c2; double J1, J2; };
-    const Pair pairs[] = {
-        {cm3, cm3, Vector3d(0, 0, 0.01), 1, 1},          // coaxial
-        {cm3, cm3, Vector3d(0.003, 0.002, 0.01), 1, 1},  // offset (3, 2) mm
-        {cm3, cm3, Vector3d(0.005, 0.005, 0.01), 1, 1},  // offset (5, 5) mm
-        {cm3, cm3, Vector3d(0.01, 0, 0.01), 1, 1},       // edge to edge
+    std::vector<Pair> pairs(std::begin(kTouchingCubes), std::end(kTouchingCubes));
+    pairs.insert(pairs.end(), {
         {cm3, Vector3d(0.02, 0.02, 0.01), Vector3d(0.001, 0.002, 0.01), 1, 1},  // source edges inside the target face
         {Vector3d(0.02, 0.012, 0.006), Vector3d(0.012, 0.02, 0.006), Vector3d(0.004, -0.004, -0.006), 0.38, -0.38},
-    };
+    });
     for (const Pair& pr : pairs) {
         const Cuboid a{Vector3d::Zero(), pr.s1 / 2, Vector3d(0, 0, pr.J1 / mu0)};
         const Cuboid b{pr.c2, pr.s2 / 2, Vector3d(0, 0, pr.J2 / mu0)};

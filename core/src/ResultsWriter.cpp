@@ -18,8 +18,7 @@ Energies bodyEnergies(const std::vector<Body>& bodies, const Vec3& gravity, doub
     for (const auto& b : bodies) {
         if (b.fixed) continue;
         const double m = b.mass();
-        e.kinetic += 0.5 * m * b.velocity.squaredNorm() +
-                     0.5 * b.angularVelocity.dot(b.inertiaWorld() * b.angularVelocity);
+        e.kinetic += kineticEnergy(b, b);
         e.gravitational -= m * gravity.dot(b.position);
     }
     return e;

@@ -20,13 +20,6 @@ constexpr double kRestSpeed = 1e-3;    // m/s: at rest below (surface speed too)
 constexpr double kProposalTravel = 0.5;
 constexpr double kStepsPerPeriod = 20; // safe step: this many per magnetic oscillation
 
-double kinetic(const Body& model, const BodyState& s) {
-    if (model.fixed) return 0.0;
-    const Mat3 R = s.orientation.toRotationMatrix();
-    const Mat3 I = R * model.inertiaBody() * R.transpose();
-    return 0.5 * model.mass() * s.velocity.squaredNorm() + 0.5 * s.angularVelocity.dot(I * s.angularVelocity);
-}
-
 double angleBetween(const Quat& a, const Quat& b) {
     const double c = std::min(1.0, std::abs(a.dot(b)));
     return 2.0 * std::acos(c);
@@ -87,7 +80,7 @@ std::optional<std::string> StepAudit::check(long step, double t, double dt, cons
     // Energy at the start of the step (the wrenches' pair energies belong there).
     double kin = 0, grav = 0, mag = 0;
     for (std::size_t i = 0; i < bodies.size(); ++i) {
-        kin += kinetic(bodies[i], before[i]);
+        kin += kineticEnergy(bodies[i], before[i]);
         if (!bodies[i].fixed) grav -= bodies[i].mass() * gravity_.dot(before[i].position);
         mag += 0.5 * wrenches[i].energy; // each pair is seen from both sides
     }

@@ -74,4 +74,13 @@ struct Body : BodyModel, BodyState {
     Vec3 magneticMoment() const { return magnetization() * shape->volume; } // A m^2
 };
 
+// Kinetic energy (J) of a body of model `m` in state `s`: 1/2 m |v|^2 + 1/2 w . I_world w
+// (0 for a fixed body).
+inline double kineticEnergy(const BodyModel& m, const BodyState& s) {
+    if (m.fixed) return 0.0;
+    const Mat3 R = s.orientation.toRotationMatrix();
+    const Mat3 I = R * m.inertiaBody() * R.transpose(); // Body::inertiaWorld()
+    return 0.5 * m.mass() * s.velocity.squaredNorm() + 0.5 * s.angularVelocity.dot(I * s.angularVelocity);
+}
+
 } // namespace mag

@@ -142,10 +142,7 @@ void mapPoint(const Geometry& g, double s, double t, Vec3& p, double& jac) {
         jac = s * (c[1] - c[0]).cross(c[2] - c[1]).norm();
         return;
     }
-    p = (1 - s) * (1 - t) * c[0] + s * (1 - t) * c[1] + s * t * c[2] + (1 - s) * t * c[3];
-    const Vec3 ds = (1 - t) * (c[1] - c[0]) + t * (c[2] - c[3]);
-    const Vec3 dt = (1 - s) * (c[3] - c[0]) + s * (c[2] - c[1]);
-    jac = ds.cross(dt).norm();
+    bilinearMap(c, s, t, p, jac);
 }
 
 // The elements of a convex piece: a quadrilateral, a triangle, or a fan of both from
@@ -200,6 +197,7 @@ struct Node {
     // then by halving into order nodes.
     bool byOrder = false;
     int order = 0;
+    double rho = 0.0; // its convergence rate (order nodes; the box never changes)
 };
 
 struct Context {
@@ -221,22 +219,12 @@ double metric(const Wrench& w, double L) {
     return std::max(w.force.norm(), w.totalTorque().norm() / L);
 }
 
-// The element rule on the box [s0, s1] x [t0, t1] of geometry g.
-Wrench boxRule(const Context& ctx, int gi, double s0, double s1, double t0, double t1, int depth) {
-    const Geometry& g = ctx.geometry[static_cast<std::size_t>(gi)];
-    // Feature distances beyond the box's sides in units of its width (a box away from
-    // a feature sees it at >= 1 width and takes plain Gauss).
-    auto beyond = [&](int side, double outside, double width) {
-        const double f = g.feature[static_cast<std::size_t>(side)];
-        return f < 0.0 ? -1.0 : (f / g.extent[static_cast<std::size_t>(side)] + outside) / width;
-    };
-    const double hs = s1 - s0, ht = t1 - t0;
-    thread_local Rule1D rs, rt;
-    const double chainWidth = depth % 2 ? 2.0 : 3.0;
-    rule1D(ctx.order, beyond(0, s0, hs), beyond(1, 1.0 - s1, hs), chainWidth, rs.x, rs.w);
-    rule1D(ctx.order, beyond(2, t0, ht), beyond(3, 1.0 - t1, ht), chainWidth, rt.x, rt.w);
+// The tensor rule rs x rt (on [0, 1]) on the box [s0, s1] x [t0, t1] of geometry g,
+// its points moved by `shift`.
+Wrench tensorRule(const Context& ctx, const Geometry& g, double s0, double s1, double t0, double t1,
+                  const Rule1D& rs, const Rule1D& rt, const Vec3& shift) {
     const Vec3& n = ctx.pieces.normals[static_cast<std::size_t>(g.face)];
-    const Vec3 shift = -ctx.pieces.inwardOffset[static_cast<std::size_t>(g.face)] * n;
+    const double hs = s1 - s0, ht = t1 - t0;
     thread_local std::vector<Vec3> points, normals;
     thread_local std::vector<double> weights;
     points.clear();
@@ -255,28 +243,31 @@ Wrench boxRule(const Context& ctx, int gi, double s0, double s1, double t0, doub
     return interactionWrench(ctx.source, ctx.Ms, points, weights, normals, ctx.Mt, ctx.rc, ctx.model);
 }
 
-// Plain m x m Gauss on the box (the rule of an order node).
+// The element rule on the box [s0, s1] x [t0, t1] of geometry g.
+Wrench boxRule(const Context& ctx, int gi, double s0, double s1, double t0, double t1, int depth) {
+    const Geometry& g = ctx.geometry[static_cast<std::size_t>(gi)];
+    // Feature distances beyond the box's sides in units of its width (a box away from
+    // a feature sees it at >= 1 width and takes plain Gauss).
+    auto beyond = [&](int side, double outside, double width) {
+        const double f = g.feature[static_cast<std::size_t>(side)];
+        return f < 0.0 ? -1.0 : (f / g.extent[static_cast<std::size_t>(side)] + outside) / width;
+    };
+    const double hs = s1 - s0, ht = t1 - t0;
+    thread_local Rule1D rs, rt;
+    const double chainWidth = depth % 2 ? 2.0 : 3.0;
+    rule1D(ctx.order, beyond(0, s0, hs), beyond(1, 1.0 - s1, hs), chainWidth, rs.x, rs.w);
+    rule1D(ctx.order, beyond(2, t0, ht), beyond(3, 1.0 - t1, ht), chainWidth, rt.x, rt.w);
+    const Vec3 shift = -ctx.pieces.inwardOffset[static_cast<std::size_t>(g.face)] *
+                       ctx.pieces.normals[static_cast<std::size_t>(g.face)];
+    return tensorRule(ctx, g, s0, s1, t0, t1, rs, rt, shift);
+}
+
+// Plain m x m Gauss on the box (the rule of an order node: never on a source
+// plane that it touches, so no inward offset).
 Wrench plainRule(const Context& ctx, const Node& nd, int m) {
-    const Geometry& g = ctx.geometry[static_cast<std::size_t>(nd.geometry)];
     const Rule1D& r = gauss01(m);
-    const Vec3& n = ctx.pieces.normals[static_cast<std::size_t>(g.face)];
-    thread_local std::vector<Vec3> points, normals;
-    thread_local std::vector<double> weights;
-    points.clear();
-    normals.clear();
-    weights.clear();
-    const double hs = nd.s1 - nd.s0, ht = nd.t1 - nd.t0;
-    for (std::size_t i = 0; i < r.x.size(); ++i)
-        for (std::size_t j = 0; j < r.x.size(); ++j) {
-            Vec3 p;
-            double jac;
-            mapPoint(g, nd.s0 + hs * r.x[i], nd.t0 + ht * r.x[j], p, jac);
-            points.push_back(p);
-            normals.push_back(n);
-            weights.push_back(r.w[i] * r.w[j] * hs * ht * jac);
-        }
-    ctx.samples.fetch_add(points.size(), std::memory_order_relaxed);
-    return interactionWrench(ctx.source, ctx.Ms, points, weights, normals, ctx.Mt, ctx.rc, ctx.model);
+    return tensorRule(ctx, ctx.geometry[static_cast<std::size_t>(nd.geometry)], nd.s0, nd.s1, nd.t0, nd.t1, r, r,
+                      Vec3::Zero());
 }
 
 // A lower bound of the box's distance to the source, in units of the box's longest
@@ -341,6 +332,13 @@ double convergenceRate(double delta, double nearDelta) {
     return std::min(rate(0.5 * (std::sqrt(4.0 + eta * eta) + eta)), rate(std::sqrt(1.0 + etaMid * etaMid)));
 }
 
+// The rate of a box `delta` widths (of `width` m) from the source, its face's dNear known.
+double boxRate(const Context& ctx, const Node& nd, double delta, double width) {
+    const int face = ctx.geometry[static_cast<std::size_t>(nd.geometry)].face;
+    const double dNear = ctx.pieces.nearDistance[static_cast<std::size_t>(face)];
+    return convergenceRate(delta, width > 0.0 ? dNear / width : 0.0);
+}
+
 // An order node's rules and estimate. First evaluation: Gauss(order - 2) and
 // Gauss(order). Raising: the accepted rule becomes the reference and the order
 // jumps by the steps its geometric convergence needs to bring the node's estimate to
@@ -350,10 +348,12 @@ double convergenceRate(double delta, double nearDelta) {
 // estimate times r, so that one reference rule landing close to the integral by
 // chance cannot hide the error.
 void evaluateByOrder(const Context& ctx, Node& nd, bool raise, double share) {
-    double width = 0.0;
-    const double delta = separation(ctx, nd, &width);
-    const double dNear = ctx.pieces.nearDistance[static_cast<std::size_t>(ctx.geometry[static_cast<std::size_t>(nd.geometry)].face)];
-    const double rho = convergenceRate(delta, width > 0.0 ? dNear / width : 0.0);
+    if (nd.rho == 0.0) {
+        double width = 0.0;
+        const double delta = separation(ctx, nd, &width);
+        nd.rho = boxRate(ctx, nd, delta, width);
+    }
+    const double rho = nd.rho;
     int step = kOrderStep;
     const double previous = nd.error;
     if (raise) {
@@ -444,7 +444,10 @@ AdaptiveResult adaptiveInteraction(const PolyhedronTables& source, const Vec3& M
         // graded rules; the others by order.
         bool onFeature = false;
         for (double f : geometry[i].feature) onFeature |= f == 0.0;
-        if (!onFeature && separation(ctx, n) >= kOrderSeparation) {
+        double width = 0.0;
+        const double delta = onFeature ? 0.0 : separation(ctx, n, &width);
+        if (!onFeature && delta >= kOrderSeparation) {
+            n.rho = boxRate(ctx, n, delta, width);
             n.byOrder = true;
             n.order = firstOrder;
             evaluateByOrder(ctx, n, false, 0.0);
@@ -456,6 +459,7 @@ AdaptiveResult adaptiveInteraction(const PolyhedronTables& source, const Vec3& M
     AdaptiveResult r;
     r.samples = ctx.samples.load();
     std::vector<std::size_t> order, fresh, next, raised, freshByOrder;
+    std::vector<char> marked;
     while (true) {
         Wrench total;
         double error = 0.0, magnitude = 0.0;
@@ -476,7 +480,7 @@ AdaptiveResult adaptiveInteraction(const PolyhedronTables& source, const Vec3& M
         order.assign(active.begin(), active.end());
         std::stable_sort(order.begin(), order.end(),
                          [&](std::size_t a, std::size_t b) { return nodes[a].error > nodes[b].error; });
-        std::vector<char> marked(nodes.size(), 0);
+        marked.assign(nodes.size(), 0);
         double sum = 0.0;
         bool any = false;
         for (std::size_t i : order) {

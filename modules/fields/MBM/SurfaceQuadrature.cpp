@@ -50,21 +50,13 @@ struct Builder {
     }
 };
 
-// Bilinear map of the planar quad (c0, c1, c2, c3), CCW: point and |J| at (s, t) in [0,1]^2.
-void bilinear(const std::vector<Vec3>& c, double s, double t, Vec3& p, double& jac) {
-    p = (1 - s) * (1 - t) * c[0] + s * (1 - t) * c[1] + s * t * c[2] + (1 - s) * t * c[3];
-    const Vec3 ds = (1 - t) * (c[1] - c[0]) + t * (c[2] - c[3]);
-    const Vec3 dt = (1 - s) * (c[3] - c[0]) + s * (c[2] - c[1]);
-    jac = ds.cross(dt).norm();
-}
-
 void regularQuad(Builder& b, const std::vector<Vec3>& c, int n) {
     // Cell centres; |J| is linear on a planar quad, so |J(centre)|/n^2 is the cell area.
     for (int i = 0; i < n; ++i)
         for (int j = 0; j < n; ++j) {
             Vec3 p;
             double jac;
-            bilinear(c, (i + 0.5) / n, (j + 0.5) / n, p, jac);
+            bilinearMap(c, (i + 0.5) / n, (j + 0.5) / n, p, jac);
             b.add(p, jac / (double(n) * n));
         }
 }
@@ -88,7 +80,7 @@ void gaussQuad(Builder& b, const std::vector<Vec3>& c, const std::vector<double>
         for (std::size_t j = 0; j < n; ++j) {
             Vec3 p;
             double jac;
-            bilinear(c, 0.5 * (x[i] + 1), 0.5 * (x[j] + 1), p, jac);
+            bilinearMap(c, 0.5 * (x[i] + 1), 0.5 * (x[j] + 1), p, jac);
             b.add(p, 0.25 * w[i] * w[j] * jac);
         }
 }
@@ -199,6 +191,13 @@ void transformSamples(const SurfaceQuadrature& q, const Eigen::Isometry3d& T,
         points[i] = T * q.points[i];
         normals[i] = R * q.normals[i];
     }
+}
+
+void bilinearMap(std::span<const Vec3> c, double s, double t, Vec3& p, double& jac) {
+    p = (1 - s) * (1 - t) * c[0] + s * (1 - t) * c[1] + s * t * c[2] + (1 - s) * t * c[3];
+    const Vec3 ds = (1 - t) * (c[1] - c[0]) + t * (c[2] - c[3]);
+    const Vec3 dt = (1 - s) * (c[3] - c[0]) + s * (c[2] - c[1]);
+    jac = ds.cross(dt).norm();
 }
 
 } // namespace mag::mbm

@@ -33,6 +33,7 @@
 #include <Eigen/Geometry>
 
 #include <string_view>
+#include <span>
 #include <vector>
 
 namespace mag::mbm {
@@ -71,5 +72,8 @@ void transformSamples(const SurfaceQuadrature& q, const Eigen::Isometry3d& T,
 
 /// Gauss-Legendre nodes and weights on [-1, 1] (n >= 1), by Newton on P_n.
 void gaussLegendre(int n, std::vector<double>& nodes, std::vector<double>& weights);
+
+/// Bilinear map of the planar quadrilateral c[0..3] (CCW): point and |J| at (s, t) in [0,1]^2.
+void bilinearMap(std::span<const Vec3> c, double s, double t, Vec3& p, double& jac);
 
 } // namespace mag::mbm
