@@ -2,6 +2,7 @@
 
 #include "magFoam/Error.hpp"
 #include "magFoam/Log.hpp"
+#include "magFoam/ModelDoc.hpp"
 #include "magFoam/Plugins.hpp"
 
 #include <exception>
@@ -13,9 +14,22 @@ ArgList::ArgList(std::string app, std::string summary) : app_(std::move(app)), s
     options_ = {{"case", "DIR", "case folder (default: current folder)"},
                 {"help", "", "print this usage and exit"},
                 {"listModules", "", "list the available model types and their libraries, then exit"},
-                {"threads", "N", "worker threads (overrides controlDict threads; 0 = all cores)"},
-                {"schemes", "FILE", "use FILE (relative to the case) instead of system/magSchemes.yaml"},
+                {"doc", "[TYPE]", "the keys of model TYPE (types, defaults, units, example); alone: the types "
+                                  "and what this app writes"},
                 {"debug", "", "debug-level logging"}};
+}
+
+ArgList& ArgList::withThreads() {
+    return option("threads", "N", "worker threads (overrides controlDict threads; 0 = all cores)");
+}
+
+ArgList& ArgList::withSchemes() {
+    return option("schemes", "FILE", "use FILE (relative to the case) instead of system/magSchemes.yaml");
+}
+
+ArgList& ArgList::outputs(const std::string& text) {
+    outputs_ = text;
+    return *this;
 }
 
 ArgList& ArgList::option(const std::string& name, const std::string& argument, const std::string& help) {
@@ -52,8 +66,10 @@ bool ArgList::parse(int argc, char** argv) {
                 exitCode_ = 2;
                 return false;
             }
-            if (opt->argument.empty()) {
-                values_[name] = "";
+            if (opt->argument.empty() || opt->argument.front() == '[') {
+                // A flag, or an optional value: the next word unless it is an option.
+                const bool value = !opt->argument.empty() && i + 1 < argc && argv[i + 1][0] != '-';
+                values_[name] = value ? argv[++i] : "";
             } else {
                 if (i + 1 >= argc) {
                     std::cerr << app_ << ": option '" << a << "' needs a value " << opt->argument << "\n";
@@ -78,6 +94,20 @@ bool ArgList::parse(int argc, char** argv) {
     if (found("listModules")) {
         try {
             std::cout << plugins::listModules();
+        } catch (const std::exception& e) {
+            std::cerr << app_ << ": " << e.what() << "\n";
+            exitCode_ = 1;
+        }
+        return false;
+    }
+    if (found("doc")) {
+        try {
+            if (get("doc").empty()) {
+                std::cout << plugins::documentIndex();
+                if (!outputs_.empty()) std::cout << "\n" << app_ << " writes:\n" << outputs_;
+            } else {
+                std::cout << plugins::documentType(get("doc"));
+            }
         } catch (const std::exception& e) {
             std::cerr << app_ << ": " << e.what() << "\n";
             exitCode_ = 1;

@@ -103,7 +103,9 @@ Dict Dict::fromFile(const std::filesystem::path& file) {
     return fromString(ss.str(), file.string());
 }
 
-Dict Dict::fromString(const std::string& text, const std::string& name) {
+Dict Dict::fromString(const std::string& text, const std::string& name) { return recording(text, name, nullptr); }
+
+Dict Dict::recording(const std::string& text, const std::string& name, std::shared_ptr<KeyLog> log) {
     YAML::Node root;
     try {
         root = YAML::Load(text);
@@ -115,7 +117,22 @@ Dict Dict::fromString(const std::string& text, const std::string& name) {
         throw InputError(markText(name, root.Mark()) + ": expected a mapping of 'key: value' at the top level, got " +
                          shortText(root));
     rejectDuplicateKeys(root, name);
-    return Dict(std::make_shared<FileState>(FileState{name, text}), root, "");
+    return Dict(std::make_shared<FileState>(FileState{name, text, std::move(log)}), root, "");
+}
+
+KeyRecord& KeyLog::at(const std::string& path) {
+    for (auto& r : records)
+        if (r.path == path) return r;
+    records.push_back(KeyRecord{path, "", "", false, false, {}, ""});
+    return records.back();
+}
+
+KeyRecord* Dict::record(const std::string& key) const {
+    return state_->log ? &state_->log->at(keyPath(key)) : nullptr;
+}
+
+void Dict::noteSelected(const std::string& what) const {
+    if (state_->log && !path_.empty()) state_->log->at(path_).selected = what;
 }
 
 std::string Dict::keyPath(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
@@ -173,7 +190,10 @@ YAML::Node Dict::required(const std::string& key) const {
     return v;
 }
 
-bool Dict::has(const std::string& key) const { return value(key).IsDefined(); }
+bool Dict::has(const std::string& key) const {
+    if (KeyRecord* r = record(key); r && r->type.empty()) r->checked = true;
+    return value(key).IsDefined();
+}
 bool Dict::isMap(const std::string& key) const { return value(key).IsMap(); }
 bool Dict::isList(const std::string& key) const { return value(key).IsSequence(); }
 
@@ -185,12 +205,14 @@ std::vector<std::string> Dict::keys() const {
 }
 
 Dict Dict::sub(const std::string& key) const {
+    if (KeyRecord* r = record(key)) r->type = "mapping", r->required = true;
     YAML::Node v = required(key);
     if (!v.IsMap()) fail(key, "expected a mapping of 'key: value', got " + shortText(v));
     return Dict(state_, v, keyPath(key));
 }
 
 Dict Dict::subOrEmpty(const std::string& key) const {
+    if (KeyRecord* r = record(key)) r->type = "mapping", r->fallback = "{}";
     YAML::Node v = value(key);
     if (!v.IsDefined() || v.IsNull()) return Dict(state_, YAML::Node(YAML::NodeType::Map), keyPath(key));
     if (!v.IsMap()) fail(key, "expected a mapping of 'key: value', got " + shortText(v));
@@ -198,6 +220,7 @@ Dict Dict::subOrEmpty(const std::string& key) const {
 }
 
 std::vector<Dict> Dict::list(const std::string& key) const {
+    if (KeyRecord* r = record(key)) r->type = "list of mappings", r->required = true;
     YAML::Node v = required(key);
     if (!v.IsSequence()) fail(key, "expected a list ('- ...' items), got " + shortText(v));
     std::vector<Dict> out;
@@ -235,12 +258,15 @@ std::string Dict::getWord(const std::string& key, const std::vector<std::string>
     const std::string w = get<std::string>(key);
     if (std::find(valid.begin(), valid.end(), w) == valid.end())
         fail(key, "unknown value '" + w + "'; valid values: " + joinWords(valid));
+    if (KeyRecord* r = record(key)) r->words = valid;
     return w;
 }
 
 std::string Dict::getWord(const std::string& key, const std::vector<std::string>& valid,
                           const std::string& fallback) const {
-    return has(key) ? getWord(key, valid) : fallback;
+    const std::string w = has(key) ? getWord(key, valid) : fallback;
+    if (KeyRecord* r = record(key)) r->type = "word", r->words = valid, r->fallback = fallback, r->required = false;
+    return w;
 }
 
 // --- Typed conversion -------------------------------------------------------
@@ -337,11 +363,59 @@ template <> struct DictConvert<Quat> {
     }
 };
 
+// The type and default as -doc prints them (KeyRecord).
+template <class T> struct DocText;
+template <> struct DocText<double> {
+    static constexpr const char* type = "number";
+    static std::string text(double x) {
+        std::ostringstream os;
+        os << x;
+        return os.str();
+    }
+};
+template <> struct DocText<int> {
+    static constexpr const char* type = "integer";
+    static std::string text(int x) { return std::to_string(x); }
+};
+template <> struct DocText<bool> {
+    static constexpr const char* type = "true/false";
+    static std::string text(bool x) { return x ? "true" : "false"; }
+};
+template <> struct DocText<std::string> {
+    static constexpr const char* type = "word";
+    static std::string text(const std::string& x) { return x.empty() ? "\"\"" : x; }
+};
+template <class V> std::string listText(const V& v) {
+    std::string out = "[";
+    for (std::size_t i = 0; i < static_cast<std::size_t>(v.size()); ++i)
+        out += (i ? ", " : "") + DocText<std::decay_t<decltype(v[0])>>::text(v[i]);
+    return out + "]";
+}
+template <> struct DocText<Vec3> {
+    static constexpr const char* type = "vector [x, y, z]";
+    static std::string text(const Vec3& x) { return listText(std::vector<double>{x.x(), x.y(), x.z()}); }
+};
+template <> struct DocText<Quat> {
+    static constexpr const char* type = "quaternion [w, x, y, z]";
+    static std::string text(const Quat& q) { return listText(std::vector<double>{q.w(), q.x(), q.y(), q.z()}); }
+};
+template <> struct DocText<std::vector<double>> {
+    static constexpr const char* type = "list of numbers";
+    static std::string text(const std::vector<double>& x) { return listText(x); }
+};
+template <> struct DocText<std::vector<std::string>> {
+    static constexpr const char* type = "list of words";
+    static std::string text(const std::vector<std::string>& x) { return listText(x); }
+};
+
 template <class T> T Dict::get(const std::string& key) const {
-    return DictConvert<T>::from(*this, key, required(key));
+    T out = DictConvert<T>::from(*this, key, required(key));
+    if (KeyRecord* r = record(key)) r->type = DocText<T>::type, r->required = true;
+    return out;
 }
 
 template <class T> T Dict::get(const std::string& key, const T& fallback) const {
+    if (KeyRecord* r = record(key)) r->type = DocText<T>::type, r->fallback = DocText<T>::text(fallback);
     YAML::Node v = value(key);
     if (!v.IsDefined()) return fallback;
     return DictConvert<T>::from(*this, key, v);

@@ -11,7 +11,10 @@ public:
     InductionReport converge(std::vector<Body>&, const FieldEvaluator&) override { return {}; }
     std::string describe() const override { return "none"; }
 };
-const InductionModel::Add<NoInduction> addNone("none");
+const InductionModel::Add<NoInduction> addNone(
+    "none", TypeDoc{"Magnetizations stay as given (the default).\nInduction is skipped when no body is soft.",
+                    {"type: none\n"},
+                    {}});
 } // namespace
 
 } // namespace mag

@@ -69,6 +69,7 @@ template <class Base>
 std::unique_ptr<Base> selectFromRegistry(Registry<Base>& registry, const Dict& dict, const std::string& what,
                                          const std::string& manifestKey) {
     const std::string type = dict.get<std::string>("type");
+    dict.noteSelected(what);
     if (!registry.has(type) && !plugins::loadForType(manifestKey, type)) plugins::tryLoadForType("mag" + type);
     const auto* entry = registry.find(type);
     if (!entry) {

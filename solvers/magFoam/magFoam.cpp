@@ -168,7 +168,18 @@ int run(const ArgList& args) {
 
 int main(int argc, char** argv) {
     ArgList args("magFoam", "Transient solver: rigid magnets moving, colliding and sticking (paper Algorithm 1).");
+    args.withThreads().withSchemes();
     args.option("strict", "", "stop the run when the energy and motion audit warns (controlDict audit.strict)");
+    args.outputs(R"(  postProcessing/bodies.csv   one row per body and write time, world frame:
+      time [s], body, x y z [m] (centre of mass), qw qx qy qz [-] (body to world),
+      vx vy vz [m/s], wx wy wz [rad/s], Fx Fy Fz [N] magnetic force,
+      Tx Ty Tz [N m] magnetic torque about the centre of mass (Eq. 17 + Eq. 18)
+  postProcessing/energy.csv   time [s], kinetic, gravitational, magnetic, total [J]
+  postProcessing/induction.csv (soft bodies) time [s], step, iterations, residual [-], converged (0/1)
+  <time>/bodies.yaml          the state of every body (restart with startFrom: latestTime)
+  <time>/timeStep.yaml        the last time step (adjustTimeStep runs)
+  VTK/bodies.pvd, VTK/bodies_N.vtp   surfaces per write time (ParaView), see README "Outputs"
+)");
     if (!args.parse(argc, argv)) return args.exitCode();
     return runGuarded(args, run);
 }

@@ -2,9 +2,12 @@
 //   -case DIR      the case folder (default .)
 //   -help          usage, options and exit
 //   -listModules   the model types of every registry and their libraries
+//   -doc [TYPE]    a model type's keys (ModelDoc.hpp); alone: the types and
+//                  the files the app writes, with their columns and units
+//   -debug         debug-level logging
+// and, for the apps where they mean something (withThreads, withSchemes):
 //   -threads N     override controlDict threads
 //   -schemes FILE  use FILE instead of system/magSchemes.yaml (model swaps)
-//   -debug         debug-level logging
 // Apps declare their own extra options; unknown options are errors.
 #pragma once
 
@@ -28,6 +31,10 @@ public:
     ArgList(std::string app, std::string summary);
     ArgList& option(const std::string& name, const std::string& argument, const std::string& help);
     ArgList& positional(const std::string& name, const std::string& help, bool required);
+    ArgList& withThreads();
+    ArgList& withSchemes();
+    // What the app writes (files, columns, units), printed by -doc alone.
+    ArgList& outputs(const std::string& text);
 
     // Parse argv. Returns false when the app should exit right away (after
     // -help or -listModules, with `exitCode()` set; usage errors set 2).
@@ -46,7 +53,7 @@ public:
     void printUsage() const;
 
 private:
-    std::string app_, summary_;
+    std::string app_, summary_, outputs_;
     std::vector<Option> options_;
     std::string positionalName_, positionalHelp_;
     bool positionalRequired_ = false;

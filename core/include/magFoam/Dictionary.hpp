@@ -25,6 +25,23 @@
 
 namespace mag {
 
+// What a model read, recorded while it is built from an example dictionary:
+// the source of `-doc TYPE` (ModelDoc.hpp), so that the keys, types and
+// defaults printed are the ones the code reads, not a copy that can drift.
+struct KeyRecord {
+    std::string path;             // dotted key path, e.g. "quadrature.tolerance"
+    std::string type;             // "number", "integer", "word", "mapping", ...
+    std::string fallback;         // the default as text; empty when required
+    bool required = false;        // read without a default
+    bool checked = false;         // has() asked first: optional despite a required read
+    std::vector<std::string> words; // getWord's valid values
+    std::string selected;         // a nested model chosen by its `type` ("field evaluator")
+};
+struct KeyLog {
+    std::vector<KeyRecord> records;
+    KeyRecord& at(const std::string& path);
+};
+
 class Dict {
 public:
     // An empty mapping (all reads fall back to defaults).
@@ -34,6 +51,12 @@ public:
     // throws InputError "file:line:col: ...".
     static Dict fromFile(const std::filesystem::path& file);
     static Dict fromString(const std::string& text, const std::string& name);
+    // As fromString, recording every read of this dictionary and its
+    // sub-dictionaries into `log`.
+    static Dict recording(const std::string& text, const std::string& name, std::shared_ptr<KeyLog> log);
+    // Marks this mapping as a model selected by `type` (for the documentation
+    // of the enclosing model; a no-op unless recording).
+    void noteSelected(const std::string& what) const;
 
     bool has(const std::string& key) const;
     bool isMap(const std::string& key) const;
@@ -79,7 +102,9 @@ private:
     struct FileState {
         std::string file;
         std::string text;
+        std::shared_ptr<KeyLog> log; // null unless recording
     };
+    KeyRecord* record(const std::string& key) const;
     Dict(std::shared_ptr<const FileState> state, YAML::Node node, std::string path);
     YAML::Node value(const std::string& key) const;
     YAML::Node required(const std::string& key) const;

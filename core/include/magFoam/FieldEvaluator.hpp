@@ -113,8 +113,9 @@ public:
     static std::unique_ptr<FieldEvaluator> New(const Dict& dict);
 
     template <class T> struct Add {
-        explicit Add(const std::string& name) {
-            registry().add(name, [](const Dict& d) { return std::unique_ptr<FieldEvaluator>(new T(d)); });
+        explicit Add(const std::string& name, TypeDoc doc = {}) {
+            registry().add(
+                name, [](const Dict& d) { return std::unique_ptr<FieldEvaluator>(new T(d)); }, std::move(doc));
         }
     };
 

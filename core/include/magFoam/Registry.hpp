@@ -22,21 +22,38 @@ namespace mag {
 // plugin loader around dlopen), so entries can say where they came from.
 const std::string& libraryBeingLoaded();
 
+// A type's documentation, declared beside its registration (`-doc TYPE`,
+// ModelDoc.hpp). Keys, value types and defaults are not written here: -doc
+// records them while building the type from `examples`; this adds what the
+// code cannot know (units, meaning). A key read but not described here, or
+// described but never read, shows in -doc and fails the documentation test.
+struct KeyDoc {
+    std::string key;     // dotted path, e.g. "quadrature.tolerance"
+    std::string unit;    // SI unit, "-" when dimensionless
+    std::string meaning;
+};
+struct TypeDoc {
+    std::string summary;
+    std::vector<std::string> examples; // YAML of the model's mapping, `type:` included
+    std::vector<KeyDoc> keys;
+};
+
 template <class Base> class Registry {
 public:
     using Factory = std::function<std::unique_ptr<Base>(const Dict&)>;
     struct Entry {
         Factory factory;
         std::string library;
+        TypeDoc doc;
     };
 
     // Registering the same name from two libraries is an error (MuJoCo rule).
-    void add(const std::string& name, Factory factory) {
+    void add(const std::string& name, Factory factory, TypeDoc doc = {}) {
         const std::string& lib = libraryBeingLoaded();
         auto it = entries_.find(name);
         if (it != entries_.end() && it->second.library != lib)
             throw std::logic_error("type '" + name + "' registered twice: by " + it->second.library + " and " + lib);
-        entries_[name] = Entry{std::move(factory), lib};
+        entries_[name] = Entry{std::move(factory), lib, std::move(doc)};
     }
     bool has(const std::string& name) const { return entries_.count(name) != 0; }
     const Entry* find(const std::string& name) const {

@@ -66,7 +66,13 @@ private:
     double scale_;
 };
 
+// What `-doc pointDipole` prints: the keys, types and defaults come from the
+// constructor's reads of the examples; units and meaning from here.
+const mag::TypeDoc kDoc{"Every body one point dipole at its centre of mass (a template).",
+                        {"type: pointDipole\nscale: 1.0\n"},
+                        {{"scale", "-", "factor on every field and wrench"}}};
+
 // The type name of magSchemes.yaml; list it in TYPES of mag_add_plugin too.
-const mag::FieldEvaluator::Add<PointDipoleField> addPointDipole("pointDipole");
+const mag::FieldEvaluator::Add<PointDipoleField> addPointDipole("pointDipole", kDoc);
 
 } // namespace

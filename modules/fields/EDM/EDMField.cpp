@@ -2,18 +2,7 @@
 //
 //   field: {type: EDM, n: 2, adaptive: false, sphere: auto, softening: 1e-6}
 //
-// | key       | required | default | unit | meaning                                       |
-// |-----------|----------|---------|------|-----------------------------------------------|
-// | n         | no       | 2       | -    | grid cells per bounding-box edge, 1..40;      |
-// |           |          |         |      | n^3 cells, those inside the mesh are dipoles  |
-// | adaptive  | no       | false   | -    | distance-adaptive sampling (below)            |
-// | sphere    | no       | auto    | -    | auto: bodies of kind sphere are ONE dipole at |
-// |           |          |         |      | the centre (exact outside a uniformly         |
-// |           |          |         |      | magnetized sphere); off: spheres are sampled  |
-// |           |          |         |      | on the grid like any mesh; on: EVERY body is  |
-// |           |          |         |      | one dipole at its COM (point-dipole model)    |
-// | softening | no       | 1e-6    | -    | distance floor as a fraction of the larger    |
-// |           |          |         |      | bounding radius, (0, 0.01]                    |
+// Keys: kDoc at the registration below (magFoam -doc EDM).
 //
 // Sampling. Each body is a set of point dipoles in its body frame: the centres of the
 // n x n x n cells of its bounding box that lie inside the mesh (generalized winding
@@ -294,7 +283,19 @@ private:
     mutable std::map<std::pair<const Shape*, int>, Entry> cache_;
 };
 
-const FieldEvaluator::Add<EDMField> addEDM("EDM");
+const TypeDoc kDoc{
+    "Equivalent Dipole Method (paper Sec. 3): point dipoles, fast for separated bodies.\n"
+    "Each body is a grid of point dipoles of total moment M V; the force diverges when\n"
+    "magnets touch or overlap.",
+    {"type: EDM\nn: 2\nadaptive: false\nsphere: auto\nsoftening: 1e-6\n"},
+    {{"n", "-", "grid cells per bounding-box edge, 1..40; the n^3 cells inside the mesh are dipoles"},
+     {"adaptive", "-", "distance-adaptive sampling: more dipoles for close pairs"},
+     {"sphere", "-",
+      "auto: bodies of kind sphere are one dipole at the centre (exact outside a uniformly\n"
+      "magnetized sphere); off: spheres sampled like any mesh; on: every body one dipole at its COM"},
+     {"softening", "-", "distance floor as a fraction of the larger bounding radius, (0, 0.01]"}}};
+
+const FieldEvaluator::Add<EDMField> addEDM("EDM", kDoc);
 
 } // namespace
 

@@ -2,21 +2,8 @@
 //
 //   field: {type: MBM, quadrature: {type: adaptive, tolerance: 1e-4}, overlap: charge}
 //
-// | key                   | default  | meaning                                      |
-// |-----------------------|----------|----------------------------------------------|
-// | quadrature.type       | adaptive | adaptive (tolerance-driven, contact-exact,   |
-// |                       |          | AdaptiveQuadrature.hpp), regular (paper:     |
-// |                       |          | n x n midpoints per planar face) or gauss    |
-// |                       |          | (n x n Gauss-Legendre per face)              |
-// | quadrature.tolerance  | 1e-4     | adaptive: relative error of force and        |
-// |                       |          | torque / size per pair, 1e-12..0.1           |
-// | quadrature.order      | 3        | adaptive: Gauss points per element side 1..12 |
-// | quadrature.maxSamples | 200000   | adaptive: per pair; beyond it the pair keeps |
-// |                       |          | its estimate (counted as adaptiveCapped)     |
-// | quadrature.n          | 10       | regular, gauss: points per face edge, 1..100 |
-// | overlap               | charge   | charge (Akoun-Yonnet: pushes overlapping     |
-// |                       |          | magnets apart) or amperian (energy force),   |
-// |                       |          | docs/physics.md#overlap-models               |
+// Keys: kDoc at the registration below (magFoam -doc MBM prints them with the
+// defaults the constructor reads).
 //
 // A and B of the source are exact (Fabbri, Eqs. 9-15), evaluated in the
 // source's body frame on the target's boundary samples moved there; only the
@@ -243,7 +230,27 @@ private:
     mutable std::map<const Shape*, CacheEntry> cache_;
 };
 
-const FieldEvaluator::Add<MBMField> addMBM("MBM");
+const TypeDoc kDoc{
+    "Magnetic Boundary Method (paper Sec. 4): exact fields, bounded at contact and overlap.\n"
+    "Fields of uniformly magnetized polyhedra in closed form (Fabbri), forces and torques\n"
+    "integrated over the target's boundary (Eqs. 16-18).\n"
+    "The default quadrature is adaptive and contact-exact.",
+    {"type: MBM\nquadrature: {type: adaptive, tolerance: 1e-4}\noverlap: charge\n",
+     "type: MBM\nquadrature: {type: gauss, n: 10}\n"},
+    {{"quadrature", "-", "how the boundary integrals are sampled"},
+     {"quadrature.type", "-",
+      "adaptive: tolerance-driven and contact-exact (docs/physics.md#adaptive-quadrature);\n"
+      "regular: the paper's n x n midpoints per planar face; gauss: n x n Gauss-Legendre per face"},
+     {"quadrature.tolerance", "-", "adaptive: relative error of force and torque/size per pair, 1e-12..0.1"},
+     {"quadrature.order", "-", "adaptive: Gauss points per side of a contact element, 1..12"},
+     {"quadrature.maxSamples", "-",
+      "adaptive: samples per pair; beyond it the pair keeps its estimate (counted as capped)"},
+     {"quadrature.n", "-", "regular, gauss: points per face edge, 1..100"},
+     {"overlap", "-",
+      "charge: Akoun-Yonnet, pushes overlapping magnets apart; amperian: the energy force\n"
+      "(docs/physics.md#overlap-models)"}}};
+
+const FieldEvaluator::Add<MBMField> addMBM("MBM", kDoc);
 
 } // namespace
 

@@ -9,22 +9,7 @@
 //     switch: {type: boundingSphere, threshold: 1.0}
 //     dipoleRatio: 8
 //
-// | key              | required | default            | unit | meaning                       |
-// |------------------|----------|--------------------|------|-------------------------------|
-// | near             | no       | {type: MBM}        | -    | any field evaluator, selected |
-// |                  |          |                    |      | by `type` like `field:`       |
-// | far              | no       | {type: EDM, n: 2}  | -    | any field evaluator           |
-// | switch.type      | no       | boundingSphere     | -    | boundingSphere or gjk         |
-// | switch.threshold | no       | 1.0                | -    | near when gap < threshold *   |
-// |                  |          |                    |      | max(R1, R2), >= 0             |
-// | dipoleRatio      | no       | 8                  | -    | far pairs with centre distance|
-// |                  |          |                    |      | > dipoleRatio (R1 + R2) are   |
-// |                  |          |                    |      | one dipole pair; 0: off       |
-// | dipoleTolerance  | no       | (not set)          | -    | instead of dipoleRatio: reach |
-// |                  |          |                    |      | from each shape's moments, so |
-// |                  |          |                    |      | a dipole pair's error <= this |
-// | farField         | no       | {method: auto}     | -    | how the dipole pairs are      |
-// |                  |          |                    |      | summed (DipoleMultipole.hpp)  |
+// Keys: kDoc at the registration below (magFoam -doc hybrid).
 //
 // The switch (per pair; R1, R2 bounding radii about the centres of mass c1, c2):
 //   boundingSphere  gap = |c1 - c2| - R1 - R2, the distance between the bounding
@@ -280,7 +265,35 @@ private:
         multipoleSums_{0}, dipoleSumNanoseconds_{0};
 };
 
-const FieldEvaluator::Add<HybridField> addHybrid("hybrid");
+const TypeDoc kDoc{
+    "Hybrid (paper Sec. 5): MBM for near pairs, EDM for far ones, dipoles for distant ones.\n"
+    "Per pair, the near model when the bodies are close, the far model otherwise, and one\n"
+    "dipole pair for pairs much farther apart than their size (summed directly or by a fast\n"
+    "multipole method).",
+    {"type: hybrid\nnear: {type: MBM, quadrature: {type: gauss, n: 10}}\nfar: {type: EDM, n: 2}\n"
+     "switch: {type: boundingSphere, threshold: 1.0}\ndipoleRatio: 8\n"
+     "farField: {method: auto, multipoleAbove: 3000, order: 12, theta: 0.5, leafSize: 64, directPairs: 300}\n",
+     "type: hybrid\ndipoleTolerance: 1e-3\n"},
+    {{"near", "-", "the near-field model, any field evaluator (default {type: MBM})"},
+     {"far", "-", "the far-field model, any field evaluator (default {type: EDM, n: 2})"},
+     {"switch", "-", "which pairs are near"},
+     {"switch.type", "-",
+      "boundingSphere: gap between the bounding spheres; gjk: distance between the convex hulls"},
+     {"switch.threshold", "-", "near when gap < threshold * max(R1, R2), >= 0"},
+     {"dipoleRatio", "-",
+      "pairs with centre distance > dipoleRatio (R1 + R2) are one dipole pair; 0: no dipole tier"},
+     {"dipoleTolerance", "-",
+      "instead of dipoleRatio: each shape's reach from its moments, so that a dipole pair's\n"
+      "relative error stays below this, (0, 1)"},
+     {"farField", "-", "how the dipole pairs are summed"},
+     {"farField.method", "-", "direct (O(N^2)), multipole (O(N)) or auto (multipole above multipoleAbove bodies)"},
+     {"farField.multipoleAbove", "-", "auto: bodies taking part above which the multipole sum is used"},
+     {"farField.order", "-", "multipole expansion degree, 2..30"},
+     {"farField.theta", "-", "multipole opening angle, (0, 1)"},
+     {"farField.leafSize", "-", "bodies per leaf cell of the multipole tree"},
+     {"farField.directPairs", "-", "cell pairs with at most this many body pairs are summed directly"}}};
+
+const FieldEvaluator::Add<HybridField> addHybrid("hybrid", kDoc);
 
 } // namespace
 

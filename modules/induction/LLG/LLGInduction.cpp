@@ -3,23 +3,7 @@
 //
 //   induction: {type: LLG, tolerance: 1e-6, maxIterations: 500}
 //
-// | key           | required | default  | unit    | meaning                                     |
-// |---------------|----------|----------|---------|---------------------------------------------|
-// | tolerance     | no       | 1e-6     | -       | converged when no body's magnetization M    |
-// |               |          |          |         | changed by more than tolerance * Ms in the  |
-// |               |          |          |         | last sweep; (0, 0.01]                       |
-// | maxIterations | no       | 500      | -       | sweeps before the step is reported          |
-// |               |          |          |         | unconverged; >= 1                           |
-// | relaxation    | no       | 1e9      | -       | largest pseudo-time step per sweep, in      |
-// |               |          |          |         | units of the body's fastest relaxation time |
-// |               |          |          |         | (Step below); > 0. 1e6 and up: Newton-like  |
-// |               |          |          |         | (fast); about 1: close to the explicit      |
-// |               |          |          |         | pseudo-time path of Eq. 20 (slow)           |
-// | maxRotation   | no       | 1.0      | rad     | largest rotation of a sub-magnetization in  |
-// |               |          |          |         | one sweep (trust region); (0, pi/2]         |
-// | gamma         | no       | 2.2128e5 | m/(A s) | gyromagnetic ratio gamma (Eq. 20), default  |
-// |               |          |          |         | mu0 * 1.76086e11 rad/(s T); > 0. Only sets  |
-// |               |          |          |         | the pseudo-time unit (see Pseudo-time)      |
+// Keys: kDoc at the registration below (magFoam -doc LLG).
 //
 // Per soft material (constant/materials.yaml, Material.hpp):
 //   steel: {model: soft, k: 5.0, Js: 2.0, density: 7850, alpha: 0.5}
@@ -563,7 +547,23 @@ private:
     std::map<std::string, Pair> state_;
 };
 
-const InductionModel::Add<LLGInduction> addLLG("LLG");
+const TypeDoc kDoc{
+    "The paper's induction (Sec. 4.3): LLG relaxation of soft bodies' magnetization.\n"
+    "Each soft body's magnetization relaxes by Landau-Lifshitz-Gilbert (Eqs. 19, 20) in\n"
+    "pseudo-time to M = k B/mu0 (Eq. 2, saturating at Ms), with B the other bodies' field at\n"
+    "its centre of mass. Materials: {model: soft, k, Js, density, alpha}.",
+    {"type: LLG\ntolerance: 1e-6\nmaxIterations: 500\n"},
+    {{"tolerance", "-",
+      "converged when no body's magnetization changed by more than tolerance * Ms in the last\n"
+      "sweep, (0, 0.01]"},
+     {"maxIterations", "-", "sweeps before the step is reported unconverged, >= 1"},
+     {"relaxation", "-",
+      "largest pseudo-time step per sweep in units of the body's fastest relaxation time, > 0;\n"
+      "1e6 and up: Newton-like (fast); about 1: close to the explicit path of Eq. 20 (slow)"},
+     {"maxRotation", "rad", "largest rotation of a sub-magnetization in one sweep (trust region), (0, pi/2]"},
+     {"gamma", "m/(A s)", "gyromagnetic ratio of Eq. 20 (mu0 * 1.76086e11); sets only the pseudo-time unit"}}};
+
+const InductionModel::Add<LLGInduction> addLLG("LLG", kDoc);
 
 } // namespace
 

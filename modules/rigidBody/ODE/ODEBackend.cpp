@@ -10,33 +10,7 @@
 //   contact: {friction: 0.5, restitution: 0.1, erp: 0.2, cfm: 1e-9, maxContacts: 8}
 //   subSteps: 1
 //
-// | key                           | default   | unit  | meaning                                   |
-// |-------------------------------|-----------|-------|-------------------------------------------|
-// | type                          | required  |       | ODE                                       |
-// | gravity                       | [0, 0, 0] | m/s^2 | as in `free`; the solver's energy.csv     |
-// |                               |           |       | reads it with the same default            |
-// | ground.height                 | 0         | m     | plane z = height; no `ground`: no plane   |
-// | contact.friction              | 0.5       |       | Coulomb mu (friction pyramid scaled by    |
-// |                               |           |       | the normal force, dContactApprox1), >= 0  |
-// | contact.restitution           | 0.1       |       | 0..1                                      |
-// | contact.bounceVelocity        | 0.1       | m/s   | slower impacts do not bounce              |
-// | contact.erp                   | 0.2       |       | share of the penetration corrected per    |
-// |                               |           |       | step, (0, 1]                              |
-// | contact.cfm                   | 1e-9      |       | constraint softness, >= 0                 |
-// | contact.maxContacts           | 8         |       | contact joints per pair, 1..64            |
-// | contact.surfaceLayer          | 1e-6      | m     | penetration left uncorrected, >= 0        |
-// | contact.maxCorrectingVelocity | 0.1       | m/s   | cap of the penetration-correction speed   |
-// | contact.meshCorrection        | true      |       | correct trimesh contacts (below)          |
-// | subSteps                      | 1         |       | ODE steps per solver step, 1..10000       |
-// | maxTravel                     | 0.1       |       | more sub-steps while a body would travel  |
-// |                               |           |       | more than this times its bounding radius  |
-// |                               |           |       | in one; 0: always subSteps                |
-// | maxSubSteps                   | 1000      |       | cap of the automatic sub-steps            |
-// | stepper                       | step      |       | step (dWorldStep) or quickStep            |
-// | iterations                    | 20        |       | quickStep only                            |
-// | collisionShapes               | auto      |       | auto or mesh (every body a trimesh)       |
-// | seed                          | 0         |       | ODE random generator (quickStep's         |
-// |                               |           |       | constraint order), >= 0                   |
+// Keys: kDoc at the registration below (magFoam -doc ODE).
 //
 // Why these defaults (measured on 1 cm, 7.5 g cubes pulled together by 50 N,
 // i.e. ~680 g, as in the magnet scenes; tests/test_odeBackend.cpp):
@@ -795,7 +769,37 @@ private:
     Stats stats_;
 };
 
-const RigidBodyBackend::Add<ODEBackend> addODE("ODE");
+const TypeDoc kDoc{
+    "Open Dynamics Engine: rigid bodies with contacts, gravity and a ground plane.\n"
+    "Bodies feel the magnetic wrench, gravity, the ground and each other (native\n"
+    "box/sphere/cylinder geoms, trimeshes for other meshes).",
+    {"type: ODE\ngravity: [0, 0, -9.81]\nground: {height: 0}\n"
+     "contact: {friction: 0.5, restitution: 0.1, bounceVelocity: 0.1, erp: 0.2, cfm: 1e-9, maxContacts: 8}\n"
+     "subSteps: 1\nmaxTravel: 0.1\n"},
+    {{"gravity", "m/s^2", "uniform acceleration of every dynamic body (energy.csv uses the same)"},
+     {"ground", "-", "a ground plane z = height; without this key, no plane"},
+     {"ground.height", "m", "height of the ground plane"},
+     {"contact", "-", "contact parameters of every pair"},
+     {"contact.friction", "-", "Coulomb coefficient mu (friction pyramid scaled by the normal force), >= 0"},
+     {"contact.restitution", "-", "0..1"},
+     {"contact.bounceVelocity", "m/s", "slower impacts do not bounce"},
+     {"contact.erp", "-", "share of the penetration corrected per step, (0, 1]"},
+     {"contact.cfm", "-", "constraint softness, >= 0"},
+     {"contact.maxContacts", "-", "contact joints per pair, 1..64"},
+     {"contact.surfaceLayer", "m", "penetration left uncorrected, >= 0 (keeps resting trimesh contacts)"},
+     {"contact.maxCorrectingVelocity", "m/s", "cap of the penetration-correction speed, > 0"},
+     {"contact.meshCorrection", "-", "correct the depth of trimesh contacts"},
+     {"subSteps", "-", "ODE steps per solver step, 1..10000 (the wrench is held over them)"},
+     {"maxTravel", "-",
+      "more sub-steps while a body would travel more than this times its bounding radius in one;\n"
+      "0: always subSteps"},
+     {"maxSubSteps", "-", "cap of the automatic sub-steps, subSteps..100000"},
+     {"stepper", "-", "step (dWorldStep, exact LCP per island) or quickStep (iterative, large heaps)"},
+     {"iterations", "-", "quickStep only: solver iterations, 1..10000"},
+     {"collisionShapes", "-", "auto (native geoms where the shape is one) or mesh (every body a trimesh)"},
+     {"seed", "-", "ODE's random generator (quickStep's constraint order), >= 0"}}};
+
+const RigidBodyBackend::Add<ODEBackend> addODE("ODE", kDoc);
 
 } // namespace
 

@@ -8,17 +8,7 @@
 //   integrator: symplecticEuler    # or verlet
 //   subSteps: 1
 //
-// | key        | required | default         | unit  | meaning                              |
-// |------------|----------|-----------------|-------|--------------------------------------|
-// | type       | yes      |                 |       | free                                 |
-// | gravity    | no       | [0, 0, 0]       | m/s^2 | uniform acceleration of every        |
-// |            |          |                 |       | dynamic body (same key and default   |
-// |            |          |                 |       | as ODE and as the solver's           |
-// |            |          |                 |       | energy.csv)                          |
-// | integrator | no       | symplecticEuler |       | symplecticEuler or verlet (below)    |
-// | subSteps   | no       | 1               |       | integrator steps per solver step,    |
-// |            |          |                 |       | 1..10000; the wrench is held over    |
-// |            |          |                 |       | all of them                          |
+// Keys: kDoc at the registration below (magFoam -doc free).
 //
 // `ground` and `contact` are rejected with a message saying that they belong
 // to the ODE backend: a case that asks for a floor must not silently lose it.
@@ -307,7 +297,19 @@ private:
     std::vector<State> states_;
 };
 
-const RigidBodyBackend::Add<FreeBody> addFree("free");
+const TypeDoc kDoc{
+    "Contact-free symplectic integrator: magnetic wrench and gravity only.\n"
+    "For field-only runs (orbits, tumbling magnets); bodies pass through each other.",
+    {"type: free\ngravity: [0, 0, -9.81]\nintegrator: symplecticEuler\nsubSteps: 1\n"},
+    {{"ground", "-", "rejected: the free backend has no ground (use type: ODE)"},
+     {"contact", "-", "rejected: the free backend has no contacts (use type: ODE)"},
+     {"gravity", "m/s^2", "uniform acceleration of every dynamic body"},
+     {"integrator", "-",
+      "symplecticEuler (kick-drift; restarts bit-identical) or verlet (second order, state kept\n"
+      "across steps)"},
+     {"subSteps", "-", "integrator steps per solver step, 1..10000 (the wrench is held over them)"}}};
+
+const RigidBodyBackend::Add<FreeBody> addFree("free", kDoc);
 
 } // namespace
 

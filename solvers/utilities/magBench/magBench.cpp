@@ -69,6 +69,7 @@ int run(const ArgList& args) {
 
 int main(int argc, char** argv) {
     ArgList args("magBench", "Speed-versus-accuracy and stability studies of system/benchDict.yaml -> postProcessing/*.csv.");
+    args.withThreads();
     args.option("study", "NAME", "run only this study of benchDict.yaml");
     if (!args.parse(argc, argv)) return args.exitCode();
     return runGuarded(args, run);

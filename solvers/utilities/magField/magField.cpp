@@ -13,6 +13,7 @@
 #include <magFoam/Error.hpp>
 #include <magFoam/Log.hpp>
 #include <magFoam/MagneticSystem.hpp>
+#include <magFoam/Threads.hpp>
 #include <magFoam/VtkWriter.hpp>
 
 #include <cstdio>
@@ -86,6 +87,7 @@ vtk::PointField vectorField(const std::string& name, const std::vector<Vec3>& v)
 
 int run(const ArgList& args) {
     Case c = Case::read(args.caseDir(), args.schemesFile());
+    setThreads(args, c);
     MagneticSystem system(c);
     const Dict dict = Dict::fromFile(c.dir() / "system/fieldDict.yaml");
     std::vector<SampleSet> sets;
@@ -127,6 +129,11 @@ int run(const ArgList& args) {
 
 int main(int argc, char** argv) {
     ArgList args("magField", "Sample B, |B|, A and H of a case's bodies on the sets of system/fieldDict.yaml.");
+    args.withThreads().withSchemes();
+    args.outputs(R"(  postProcessing/magField/<set>.csv   one row per point, world frame:
+      x y z [m], Bx By Bz [T], magB [T], Ax Ay Az [T m], Hx Hy Hz [A/m]
+  postProcessing/magField/<set>.vtp (line) or .vti (plane, box)   the same fields for ParaView
+)");
     if (!args.parse(argc, argv)) return args.exitCode();
     return runGuarded(args, run);
 }

@@ -119,6 +119,12 @@ int run(const ArgList& args) {
 
 int main(int argc, char** argv) {
     ArgList args("magForces", "Forces and torques on every body of a case (optional sweep in system/forcesDict.yaml).");
+    args.withThreads().withSchemes();
+    args.outputs(R"(  postProcessing/forces.csv   one row per body (and sweep point), world frame:
+      [step, offset [m] | angle [deg] (sweeps)], body, Fx Fy Fz [N],
+      Tx Ty Tz [N m] torque about the centre of mass (magnetic Eq. 17 + mechanical Eq. 18),
+      TmagX TmagY TmagZ [N m] the magnetic part (Eq. 17), energy [J] interaction energy
+)");
     if (!args.parse(argc, argv)) return args.exitCode();
     return runGuarded(args, run);
 }

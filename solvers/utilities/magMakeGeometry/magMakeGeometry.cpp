@@ -80,9 +80,13 @@ int run(const ArgList& args) {
 } // namespace
 
 int main(int argc, char** argv) {
+    std::string types;
+    for (const auto& t : shapeTypes()) types += (types.empty() ? "" : ", ") + t;
     ArgList args("magMakeGeometry",
                  "Writes meshes of paperclips, binder clips, nuts, washers, brackets, rods and magnets "
-                 "(system/geometryDict.yaml) to constant/geometry/<name>.stl.");
+                 "(system/geometryDict.yaml) to constant/geometry/<name>.stl.\n"
+                 "Part types: " + types + ".\n"
+                 "Their keys and defaults: docs/case-reference.md#magmakegeometry.");
     if (!args.parse(argc, argv)) return args.exitCode();
     return runGuarded(args, run);
 }
