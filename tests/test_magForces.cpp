@@ -1,6 +1,7 @@
 // magForces end to end: the rotation sweep's torque about the axis is minus the
 // derivative of its energy column, the translation sweep keeps its CSV and
-// values, and bad sweeps end the app naming the key.
+// values, bad sweeps end the app naming the key, and the converged
+// magnetization of soft bodies is printed.
 #include "caseFixture.hpp"
 
 #include <magFoam/Types.hpp>
@@ -148,6 +149,7 @@ TEST_CASE("magForces translation sweep: CSV and values as before", "[magForces]"
     CHECK(csv.rows[0].at("Fz") == Approx(-20.360).epsilon(2e-4));
     CHECK(csv.rows[2].at("Fz") == Approx(-14.673).epsilon(2e-4));
     CHECK(std::regex_search(log, std::regex("step 2 offset \\+0.001 m")));
+    CHECK(log.find("soft ") == std::string::npos);  // no soft body, no magnetization line
 }
 
 TEST_CASE("magForces sweep: bad input names the key", "[magForces][badInput]") {
@@ -188,4 +190,40 @@ TEST_CASE("magForces sweep: bad input names the key", "[magForces][badInput]") {
     std::string log;
     CHECK(runMagForces(c, log) == 0);
     CHECK(std::regex_search(log, std::regex("forcesDict.yaml:1:[0-9]+: sweep.rotate.to: 1.5708 looks like radians")));
+}
+
+TEST_CASE("magForces prints the converged magnetization of soft bodies", "[magForces][induction]") {
+    // A steel ball 2 mm above a 1 cm magnet, on its axis: B there is along +z.
+    magtest::TempCase c;
+    c.write("system/magSchemes.yaml", "field: {type: MBM}\ninduction: {type: LLG, tolerance: 1e-6}\n");
+    c.write("constant/materials.yaml", "N42: {model: permanent, Br: 1.3, density: 7500}\n"
+                                       "steel: {model: soft, k: 5, Js: 2.0, density: 7850}\n");
+    c.write("constant/bodies.yaml",
+            "bodies:\n"
+            "  - {name: magnet, geometry: {box: {size: [0.01, 0.01, 0.01]}}, material: N42,\n"
+            "     magnetization: [0, 0, 1], position: [0, 0, 0], motion: fixed}\n"
+            "  - {name: ball, geometry: {sphere: {radius: 0.002, subdivisions: 2}}, material: steel,\n"
+            "     position: [0, 0, 0.009]}\n");
+    std::string log;
+    REQUIRE(runMagForces(c, log) == 0);
+    INFO(log);
+    CHECK(log.find("induction did not converge") == std::string::npos);
+    CHECK(log.find("soft magnet") == std::string::npos);  // permanent: no line
+    const std::string num = "([-+0-9.e]+)";
+    std::smatch m;
+    REQUIRE(std::regex_search(log, m,
+                              std::regex("soft ball +M = \\(" + num + ", " + num + ", " + num + "\\) A/m \\(world\\), \\|M\\| = " +
+                                         num + " A/m, mu0\\|M\\| = " + num + " T")));
+    // The ball's line follows the table (its force row).
+    CHECK(log.find("  ball ") < std::size_t(m.position(0)));
+    const Vec3 M(std::stod(m[1]), std::stod(m[2]), std::stod(m[3]));
+    const double normM = std::stod(m[4]), J = std::stod(m[5]);
+    CHECK(normM == Approx(M.norm()).epsilon(1e-5));
+    CHECK(J == Approx(mag::mu0 * normM).epsilon(1e-3));
+    // Plausible: along the field on the axis, at most saturation (Js = 2 T),
+    // and clearly magnetized (B of the magnet there is a few tenths of a tesla).
+    CHECK(M.z() > 0);
+    CHECK(std::hypot(M.x(), M.y()) <= 1e-3 * M.norm());
+    CHECK(J > 0.05);
+    CHECK(J <= 2.0);
 }

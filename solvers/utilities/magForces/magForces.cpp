@@ -16,7 +16,8 @@
 // centre of mass = magnetic (Eq. 17) + mechanical (Eq. 18); energy = the
 // body's interaction energy with all others, so that F = -grad U and, for a
 // rotation about a, T.a = -dU/dangle) with step,offset (m) or step,angle
-// (degrees) first in a sweep, and prints a table.
+// (degrees) first in a sweep, and prints a table; after it, the magnetization
+// of every soft body (world frame, A/m, and mu0 |M| in T).
 #include <magFoam/ArgList.hpp>
 #include <magFoam/BodyOverlap.hpp>
 #include <magFoam/Case.hpp>
@@ -81,6 +82,16 @@ Sweep readSweep(const Case& c, const Dict& dict) {
     d.reportUnused();
     dict.reportUnused();
     return s;
+}
+
+// One line per soft body: its converged (induced) magnetization.
+void printSoftBodies(const std::vector<Body>& bodies) {
+    for (const Body& b : bodies) {
+        if (!b.soft()) continue;
+        const Vec3 M = b.magnetization();
+        spdlog::info("  soft {:<12} M = ({:.6g}, {:.6g}, {:.6g}) A/m (world), |M| = {:.6g} A/m, mu0|M| = {:.4g} T",
+                     b.name, M.x(), M.y(), M.z(), M.norm(), mu0 * M.norm());
+    }
 }
 
 void writeRow(std::ofstream& csv, const std::string& prefix, const Body& b, const Wrench& w) {
@@ -158,6 +169,7 @@ int run(const ArgList& args) {
                 spdlog::info("  {:<12} {:>13.6g} {:>13.6g} {:>13.6g} {:>13.6g} {:>13.6g} {:>13.6g}", bodies[i].name,
                              w[i].force.x(), w[i].force.y(), w[i].force.z(), T.x(), T.y(), T.z());
             }
+            printSoftBodies(bodies);
         }
     }
     spdlog::info("{} evaluation(s), {:.3f} ms each; wrote {}", steps, 1e3 * seconds / steps, csvPath.string());
@@ -170,7 +182,7 @@ int run(const ArgList& args) {
 
 int main(int argc, char** argv) {
     ArgList args("magForces", "Forces and torques on every body of a case (optional translation or rotation sweep of one body in "
-                   "system/forcesDict.yaml).");
+                   "system/forcesDict.yaml); the magnetization of soft bodies.");
     if (!args.parse(argc, argv)) return args.exitCode();
     return runGuarded(args, run);
 }
