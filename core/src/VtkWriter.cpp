@@ -61,6 +61,22 @@ void writePolyLine(const std::filesystem::path& file, const std::vector<Vec3>& p
         << "</DataArray></Lines>\n</Piece>\n</PolyData>\n</VTKFile>\n";
 }
 
+void writeVertices(const std::filesystem::path& file, const std::vector<Vec3>& points,
+                   const std::vector<PointField>& fields) {
+    auto out = openFile(file);
+    const std::size_t n = points.size();
+    out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+        << "<PolyData>\n<Piece NumberOfPoints=\"" << n << "\" NumberOfVerts=\"" << n << "\">\n<PointData>\n";
+    writeArrays(out, fields);
+    out << "</PointData>\n";
+    writePoints(out, points);
+    out << "<Verts><DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
+    for (std::size_t i = 0; i < n; ++i) out << i << ((i + 1) % 20 ? ' ' : '\n');
+    out << "\n</DataArray><DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
+    for (std::size_t i = 1; i <= n; ++i) out << i << ((i % 20) ? ' ' : '\n');
+    out << "\n</DataArray></Verts>\n</Piece>\n</PolyData>\n</VTKFile>\n";
+}
+
 void writeSurface(const std::filesystem::path& file, const std::vector<Vec3>& points,
                   const std::vector<std::array<int, 3>>& triangles, const std::vector<PointField>& pointFields,
                   const std::vector<PointField>& cellFields) {

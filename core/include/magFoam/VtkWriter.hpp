@@ -1,5 +1,6 @@
 // VTK XML writers (ASCII; ParaView opens them directly): image data (.vti)
-// for sampled fields and poly data (.vtp) for lines and surfaces.
+// for sampled fields and poly data (.vtp) for lines, scattered points and
+// surfaces.
 #pragma once
 
 #include "magFoam/Types.hpp"
@@ -25,6 +26,9 @@ void writeImageData(const std::filesystem::path& file, const Vec3& origin, const
 // Points joined as one polyline (lines) or triangles (surfaces), with point
 // fields and optional cell fields.
 void writePolyLine(const std::filesystem::path& file, const std::vector<Vec3>& points,
+                   const std::vector<PointField>& fields);
+// Unconnected points (one vertex cell each): scattered samples.
+void writeVertices(const std::filesystem::path& file, const std::vector<Vec3>& points,
                    const std::vector<PointField>& fields);
 void writeSurface(const std::filesystem::path& file, const std::vector<Vec3>& points,
                   const std::vector<std::array<int, 3>>& triangles, const std::vector<PointField>& pointFields,
