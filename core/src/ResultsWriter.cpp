@@ -160,7 +160,8 @@ void ResultsWriter::writeInduction(double time, long step, const InductionReport
 }
 
 void ResultsWriter::write(double time, long step, const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches,
-                          const Energies& e, const std::vector<StateFile>& states) {
+                          const Energies& e, const std::vector<StateFile>& states,
+                          const std::vector<std::vector<Vec3>>& faceB) {
     char line[1024];
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         const Body& b = bodies[i];
@@ -180,7 +181,16 @@ void ResultsWriter::write(double time, long step, const std::vector<Body>& bodie
     energyCsv_ << line;
     energyCsv_.flush();
     writeState(time, step, bodies, states);
-    writeVtk(time, bodies, wrenches);
+    writeVtk(time, bodies, faceB);
+}
+
+std::vector<Vec3> faceCentres(const Body& body) {
+    const auto& mesh = body.shape->mesh;
+    std::vector<Vec3> out;
+    out.reserve(mesh.triangles.size());
+    for (const auto& t : mesh.triangles)
+        out.push_back(body.toWorld((mesh.vertices[t[0]] + mesh.vertices[t[1]] + mesh.vertices[t[2]]) / 3.0));
+    return out;
 }
 
 void ResultsWriter::writeState(double time, long step, const std::vector<Body>& bodies,
@@ -227,25 +237,47 @@ void ResultsWriter::writeState(double time, long step, const std::vector<Body>& 
     writeFile("bodies.yaml", os.str());
 }
 
-void ResultsWriter::writeVtk(double time, const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches) {
+void ResultsWriter::writeVtk(double time, const std::vector<Body>& bodies,
+                             const std::vector<std::vector<Vec3>>& faceB) {
+    // Per face: what a user inspects in ParaView. B of the other bodies there,
+    // its normal part, and the magnetic traction (M . n) B, the surface-charge
+    // force density whose integral is the body's force (paper Eq. 16).
     std::vector<Vec3> points;
     std::vector<std::array<int, 3>> tris;
-    vtk::PointField id{"body", 1, {}}, M{"magnetization", 3, {}}, F{"force", 3, {}};
+    std::vector<std::string> names;
+    vtk::PointField id{"body", 1, {}}, M{"magnetization", 3, {}}, V{"velocity", 3, {}};
+    vtk::PointField Bf{"B", 3, {}}, Bn{"Bn", 1, {}}, magB{"magB", 1, {}}, traction{"traction", 3, {}};
+    const bool fields = faceB.size() == bodies.size();
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         const Body& b = bodies[i];
+        names.push_back(b.name);
         const int offset = static_cast<int>(points.size());
         for (const auto& v : b.shape->mesh.vertices) points.push_back(b.toWorld(v));
-        const Vec3 m = b.magnetization(), f = wrenches[i].force;
-        for (const auto& t : b.shape->mesh.triangles) {
+        const Vec3 m = b.magnetization();
+        const auto& mesh = b.shape->mesh;
+        for (std::size_t k = 0; k < mesh.triangles.size(); ++k) {
+            const auto& t = mesh.triangles[k];
             tris.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
             id.values.push_back(double(i));
             M.values.insert(M.values.end(), {m.x(), m.y(), m.z()});
-            F.values.insert(F.values.end(), {f.x(), f.y(), f.z()});
+            const Vec3 c = b.toWorld((mesh.vertices[t[0]] + mesh.vertices[t[1]] + mesh.vertices[t[2]]) / 3.0);
+            const Vec3 v = b.velocity + b.angularVelocity.cross(c - b.position);
+            V.values.insert(V.values.end(), {v.x(), v.y(), v.z()});
+            if (!fields) continue;
+            const Vec3 n = b.orientation * mesh.normal(static_cast<int>(k));
+            const Vec3& B = faceB[i][k];
+            const Vec3 f = m.dot(n) * B;
+            Bf.values.insert(Bf.values.end(), {B.x(), B.y(), B.z()});
+            Bn.values.push_back(B.dot(n));
+            magB.values.push_back(B.norm());
+            traction.values.insert(traction.values.end(), {f.x(), f.y(), f.z()});
         }
     }
+    std::vector<vtk::PointField> cells = {id, M, V};
+    if (fields) cells.insert(cells.end(), {Bf, Bn, magB, traction});
     while (!series_.empty() && series_.back().first >= time - 1e-12) series_.pop_back();
     const std::string name = "bodies_" + std::to_string(series_.size()) + ".vtp";
-    vtk::writeSurface(dir_ / "VTK" / name, points, tris, {}, {id, M, F});
+    vtk::writeSurface(dir_ / "VTK" / name, points, tris, {}, cells, names);
     series_.emplace_back(time, name);
     std::ofstream pvd(dir_ / "VTK/bodies.pvd");
     pvd.precision(12);

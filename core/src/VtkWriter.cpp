@@ -79,10 +79,21 @@ void writeVertices(const std::filesystem::path& file, const std::vector<Vec3>& p
 
 void writeSurface(const std::filesystem::path& file, const std::vector<Vec3>& points,
                   const std::vector<std::array<int, 3>>& triangles, const std::vector<PointField>& pointFields,
-                  const std::vector<PointField>& cellFields) {
+                  const std::vector<PointField>& cellFields, const std::vector<std::string>& names) {
     auto out = openFile(file);
     out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-        << "<PolyData>\n<Piece NumberOfPoints=\"" << points.size() << "\" NumberOfPolys=\"" << triangles.size()
+        << "<PolyData>\n";
+    if (!names.empty()) {
+        // VTK's ASCII form of a string array: each string's bytes as integers, then 0.
+        out << "<FieldData>\n<DataArray type=\"String\" Name=\"bodyNames\" NumberOfTuples=\"" << names.size()
+            << "\" format=\"ascii\">\n";
+        for (const std::string& n : names) {
+            for (unsigned char c : n) out << int(c) << ' ';
+            out << "0\n";
+        }
+        out << "</DataArray>\n</FieldData>\n";
+    }
+    out << "<Piece NumberOfPoints=\"" << points.size() << "\" NumberOfPolys=\"" << triangles.size()
         << "\">\n<PointData>\n";
     writeArrays(out, pointFields);
     out << "</PointData>\n<CellData>\n";

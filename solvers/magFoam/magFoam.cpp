@@ -51,7 +51,14 @@ void writeResults(ResultsWriter& writer, const MagneticSystem& magnets, const st
     const std::vector<Wrench> w = magnets.wrenches(bodies);
     double magnetic = 0;
     for (const auto& x : w) magnetic += 0.5 * x.energy;  // each pair is seen from both sides
-    writer.write(t, step, bodies, w, bodyEnergies(bodies, gravity, magnetic), states);
+    // The surfaces' per-face fields: B of the other bodies at every face centre.
+    std::vector<std::vector<Vec3>> faceB(bodies.size());
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        const std::vector<Vec3> centres = faceCentres(bodies[i]);
+        faceB[i].assign(centres.size(), Vec3::Zero());
+        magnets.field(bodies, centres, faceB[i], {}, {}, &bodies[i]);
+    }
+    writer.write(t, step, bodies, w, bodyEnergies(bodies, gravity, magnetic), states, faceB);
 }
 
 void describeRun(const Case& c, const MagneticSystem& magnets, const RigidBodyBackend& backend,

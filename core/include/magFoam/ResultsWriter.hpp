@@ -76,6 +76,10 @@ struct StateFile {
     std::string text;
 };
 
+// World positions of the centres of a body's triangles, in triangle order
+// (where the VTK surfaces' per-face fields are taken).
+std::vector<Vec3> faceCentres(const Body& body);
+
 class ResultsWriter {
 public:
     // restartTime: drop CSV rows after it (nullopt: start the files anew).
@@ -83,8 +87,11 @@ public:
 
     // One write time. `states` go into the time folder before bodies.yaml;
     // one with empty text removes an older file of that name there.
+    // `faceB`: per body, B of all the other bodies at its triangles' centres
+    // (faceCentres(), world frame, T); empty: the surfaces carry no field.
     void write(double time, long step, const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches,
-               const Energies& energies, const std::vector<StateFile>& states = {});
+               const Energies& energies, const std::vector<StateFile>& states = {},
+               const std::vector<std::vector<Vec3>>& faceB = {});
 
     // One row of postProcessing/induction.csv (time,step,iterations,residual,
     // converged) per step of a scene with soft bodies; the file is opened at
@@ -94,7 +101,7 @@ public:
 private:
     void writeState(double time, long step, const std::vector<Body>& bodies,
                     const std::vector<StateFile>& states) const;
-    void writeVtk(double time, const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches);
+    void writeVtk(double time, const std::vector<Body>& bodies, const std::vector<std::vector<Vec3>>& faceB);
 
     std::filesystem::path dir_;
     std::optional<double> restartTime_;

@@ -30,8 +30,10 @@ void writePolyLine(const std::filesystem::path& file, const std::vector<Vec3>& p
 // Unconnected points (one vertex cell each): scattered samples.
 void writeVertices(const std::filesystem::path& file, const std::vector<Vec3>& points,
                    const std::vector<PointField>& fields);
+// `names`: a string array "bodyNames" in the data set's field data (ParaView's
+// Information tab; cell field "body" indexes it).
 void writeSurface(const std::filesystem::path& file, const std::vector<Vec3>& points,
                   const std::vector<std::array<int, 3>>& triangles, const std::vector<PointField>& pointFields,
-                  const std::vector<PointField>& cellFields);
+                  const std::vector<PointField>& cellFields, const std::vector<std::string>& names = {});
 
 } // namespace mag::vtk
