@@ -86,7 +86,7 @@ int main(int argc, char** argv) {
                  "Writes meshes of paperclips, binder clips, nuts, washers, brackets, rods and magnets "
                  "(system/geometryDict.yaml) to constant/geometry/<name>.stl.\n"
                  "Part types: " + types + ".\n"
-                 "Their keys and defaults: docs/case-reference.md#magmakegeometry.");
+                 "Their keys and defaults: docs/case-reference.md#geometrydict.");
     if (!args.parse(argc, argv)) return args.exitCode();
     return runGuarded(args, run);
 }
