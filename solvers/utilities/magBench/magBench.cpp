@@ -70,6 +70,8 @@ int run(const ArgList& args) {
 int main(int argc, char** argv) {
     ArgList args("magBench", "Speed-versus-accuracy and stability studies of system/benchDict.yaml -> postProcessing/*.csv.");
     args.withThreads();
+    args.outputs("  postProcessing/<study>.csv   one file per study of system/benchDict.yaml; columns per study:\n"
+                 "      cases/benchmarks/README.md (the column names carry the units, e.g. ms per step)\n");
     args.option("study", "NAME", "run only this study of benchDict.yaml");
     if (!args.parse(argc, argv)) return args.exitCode();
     return runGuarded(args, run);

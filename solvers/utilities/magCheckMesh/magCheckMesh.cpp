@@ -193,6 +193,7 @@ int main(int argc, char** argv) {
                       "Exit status: 0 OK, 1 a mesh unusable or unreadable, 2 usage error.");
     args.positional("FILE", "check this mesh file instead of the case's bodies", false)
         .option("scale", "S", "with FILE: multiply coordinates by S (e.g. 0.001 for files in mm)");
+    args.outputs("  nothing: a table on stdout; exit status 0 OK, 1 a mesh unusable or unreadable\n");
     if (!args.parse(argc, argv)) return args.exitCode();
     double scale = 1.0;
     if (args.found("scale")) {

@@ -87,6 +87,7 @@ int main(int argc, char** argv) {
                  "(system/geometryDict.yaml) to constant/geometry/<name>.stl.\n"
                  "Part types: " + types + ".\n"
                  "Their keys and defaults: docs/case-reference.md#geometrydict.");
+    args.outputs("  constant/geometry/<name>.stl   binary STL per part, metres (bodies.yaml: geometry: {file: ...})\n");
     if (!args.parse(argc, argv)) return args.exitCode();
     return runGuarded(args, run);
 }
