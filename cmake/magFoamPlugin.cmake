@@ -6,7 +6,8 @@
 #
 # TYPES names what the library registers, e.g. `TYPES field:MBM` or
 # `TYPES rigidBody:free`; registries: field (magSchemes.yaml field.type),
-# induction (magSchemes.yaml induction.type), rigidBody (rigidBody.yaml type).
+# induction (magSchemes.yaml induction.type), rigidBody (rigidBody.yaml type),
+# appliedField (appliedField.yaml type).
 # The build then lists the library in the plugin manifest of the folder it is
 # built into (<project>.magPlugins.yaml, beside the libraries; installed too),
 # and the apps load what the manifests on the plugin search path list, find the
@@ -32,9 +33,9 @@ function(mag_add_plugin name)
   endif()
 
   foreach(t IN LISTS ARG_TYPES)
-    if(NOT t MATCHES "^(field|induction|rigidBody):[A-Za-z_][A-Za-z0-9_]*$")
+    if(NOT t MATCHES "^(field|induction|rigidBody|appliedField):[A-Za-z_][A-Za-z0-9_]*$")
       message(FATAL_ERROR "mag_add_plugin(${name}): TYPES entry '${t}' is not <registry>:<type> "
-                          "with registry field, induction or rigidBody")
+                          "with registry field, induction, rigidBody or appliedField")
     endif()
   endforeach()
   if(NOT ARG_TYPES AND NOT ARG_NO_INSTALL)

@@ -2,6 +2,7 @@
 // its reader reads. The documentation is recorded from the reads; this test
 // checks it against the other thing the reader does with its keys: the list
 // of valid keys it gives when a mapping holds an unknown one (Dict::reportUnused).
+#include <magFoam/AppliedField.hpp>
 #include <magFoam/Error.hpp>
 #include <magFoam/FieldEvaluator.hpp>
 #include <magFoam/InductionModel.hpp>
@@ -50,6 +51,7 @@ std::set<std::string> validKeysAt(const std::string& registry, const std::string
         if (registry == "field") (void)FieldEvaluator::New(d);
         if (registry == "induction") (void)InductionModel::New(d);
         if (registry == "rigidBody") (void)RigidBodyBackend::New(d);
+        if (registry == "appliedField") (void)AppliedField::New(d);
     } catch (const InputError& e) {
         message = e.what();
     }
@@ -70,7 +72,8 @@ TEST_CASE("model doc: -doc lists every registered type, and for each exactly the
     std::set<std::string> names;
     for (const auto& d : docs) names.insert(d.name);
     // The standard modules: a missing one would be missing from -doc.
-    for (const char* t : {"MBM", "EDM", "hybrid", "LLG", "none", "ODE", "free"}) CHECK(names.count(t));
+    for (const char* t : {"MBM", "EDM", "hybrid", "LLG", "none", "ODE", "free", "uniform", "gradient"})
+        CHECK(names.count(t));
 
     for (const auto& d : docs) {
         INFO(d.registry << " " << d.name << "\n" << d.text);
@@ -94,6 +97,7 @@ TEST_CASE("model doc: -doc lists every registered type, and for each exactly the
             if (d.registry == "field") return FieldEvaluator::registry().find(d.name)->doc.examples;
             if (d.registry == "induction") return InductionModel::registry().find(d.name)->doc.examples;
             if (d.registry == "rigidBody") return RigidBodyBackend::registry().find(d.name)->doc.examples;
+            if (d.registry == "appliedField") return AppliedField::registry().find(d.name)->doc.examples;
             return none;
         }();
         REQUIRE_FALSE(entry.empty());

@@ -125,6 +125,7 @@ Case Case::read(const std::filesystem::path& dir, const std::filesystem::path& s
         c.magSchemes_ = Dict::fromFile(file);
     }
     c.rigidBody_ = readOptional(dir / "constant/rigidBody.yaml");
+    c.appliedField_ = readOptional(dir / "constant/appliedField.yaml");
 
     const auto materialsFile = dir / "constant/materials.yaml";
     const auto bodiesFile = dir / "constant/bodies.yaml";
@@ -152,6 +153,11 @@ const Dict& Case::rigidBody() const {
 }
 
 Dict Case::fieldDict() const { return magSchemes().sub("field"); }
+
+Dict Case::appliedFieldDict() const {
+    if (appliedField_) return *appliedField_;
+    return Dict::fromString("type: none", (dir_ / "constant/appliedField.yaml").string());
+}
 
 Dict Case::inductionDict() const {
     if (magSchemes().has("induction")) return magSchemes().sub("induction");

@@ -88,7 +88,7 @@ bool parseDouble(const YAML::Node& n, double& out) {
 // ---------------------------------------------------------------------------
 
 Dict::Dict()
-    : state_(std::make_shared<FileState>(FileState{"<empty>", ""})), node_(YAML::NodeType::Map),
+    : state_(std::make_shared<FileState>(FileState{"<empty>", "", nullptr})), node_(YAML::NodeType::Map),
       asked_(std::make_shared<std::set<std::string>>()) {}
 
 Dict::Dict(std::shared_ptr<const FileState> state, YAML::Node node, std::string path)
@@ -324,6 +324,26 @@ template <> struct DictConvert<std::vector<double>> {
     }
 };
 
+template <> struct DictConvert<std::vector<std::vector<double>>> {
+    static std::vector<std::vector<double>> from(const Dict& d, const std::string& key, const YAML::Node& n) {
+        if (!n.IsSequence())
+            d.fail(key, "expected a list of rows of numbers like [[1, 2], [3, 4]], got " + shortText(n));
+        std::vector<std::vector<double>> out;
+        for (const auto& row : n) {
+            if (!row.IsSequence()) d.fail(key, "expected a list of rows like [[1, 2], [3, 4]], got " + shortText(n));
+            std::vector<double> r;
+            for (const auto& item : row) {
+                double x;
+                if (!parseDouble(item, x) || !std::isfinite(x))
+                    d.fail(key, "expected rows of finite numbers, got " + shortText(row));
+                r.push_back(x);
+            }
+            out.push_back(std::move(r));
+        }
+        return out;
+    }
+};
+
 template <> struct DictConvert<std::vector<std::string>> {
     static std::vector<std::string> from(const Dict& d, const std::string& key, const YAML::Node& n) {
         if (n.IsNull()) return {};
@@ -403,6 +423,14 @@ template <> struct DocText<std::vector<double>> {
     static constexpr const char* type = "list of numbers";
     static std::string text(const std::vector<double>& x) { return listText(x); }
 };
+template <> struct DocText<std::vector<std::vector<double>>> {
+    static constexpr const char* type = "list of rows of numbers";
+    static std::string text(const std::vector<std::vector<double>>& x) {
+        std::string out = "[";
+        for (std::size_t i = 0; i < x.size(); ++i) out += (i ? ", " : "") + listText(x[i]);
+        return out + "]";
+    }
+};
 template <> struct DocText<std::vector<std::string>> {
     static constexpr const char* type = "list of words";
     static std::string text(const std::vector<std::string>& x) { return listText(x); }
@@ -429,6 +457,9 @@ template Vec3 Dict::get<Vec3>(const std::string&) const;
 template Quat Dict::get<Quat>(const std::string&) const;
 template std::vector<double> Dict::get<std::vector<double>>(const std::string&) const;
 template std::vector<std::string> Dict::get<std::vector<std::string>>(const std::string&) const;
+template std::vector<std::vector<double>> Dict::get<std::vector<std::vector<double>>>(const std::string&) const;
+template std::vector<std::vector<double>> Dict::get<std::vector<std::vector<double>>>(
+    const std::string&, const std::vector<std::vector<double>>&) const;
 template double Dict::get<double>(const std::string&, const double&) const;
 template int Dict::get<int>(const std::string&, const int&) const;
 template bool Dict::get<bool>(const std::string&, const bool&) const;

@@ -5,18 +5,22 @@
 namespace mag {
 
 MagneticSystem::MagneticSystem(const Case& c)
-    : field_(FieldEvaluator::New(c.fieldDict())), induction_(InductionModel::New(c.inductionDict())) {
+    : field_(FieldEvaluator::New(c.fieldDict())), induction_(InductionModel::New(c.inductionDict())),
+      applied_(AppliedField::New(c.appliedFieldDict())) {
     c.magSchemes().reportUnused();
 }
 
-MagneticSystem::MagneticSystem(std::unique_ptr<FieldEvaluator> field, std::unique_ptr<InductionModel> induction)
-    : field_(std::move(field)), induction_(std::move(induction)) {}
+MagneticSystem::MagneticSystem(std::unique_ptr<FieldEvaluator> field, std::unique_ptr<InductionModel> induction,
+                               std::unique_ptr<AppliedField> applied)
+    : field_(std::move(field)), induction_(std::move(induction)), applied_(std::move(applied)) {
+    if (!applied_) applied_ = AppliedField::New(Dict::fromString("type: none", "no applied field"));
+}
 
 InductionReport MagneticSystem::converge(std::vector<Body>& bodies) const {
     bool anySoft = false;
     for (const auto& b : bodies) anySoft = anySoft || b.soft();
     if (!anySoft) return {};
-    return induction_->converge(bodies, *field_);
+    return induction_->converge(bodies, *field_, *applied_);
 }
 
 std::vector<Wrench> MagneticSystem::wrenches(const std::vector<Body>& bodies, bool skipFixedTargets) const {
@@ -26,6 +30,9 @@ std::vector<Wrench> MagneticSystem::wrenches(const std::vector<Body>& bodies, bo
         if (bodies[i].magnetizationBody.squaredNorm() != 0) active.push_back(i);
     std::vector<Wrench> out(bodies.size());
     field_->addWrenches(bodies, active, skipFixedTargets, out);
+    if (applied_->active())
+        for (std::size_t i : active)
+            if (!(skipFixedTargets && bodies[i].fixed)) out[i] += applied_->wrench(bodies[i]);
     return out;
 }
 
@@ -50,6 +57,15 @@ void MagneticSystem::field(const std::vector<Body>& bodies, std::span<const Vec3
             B[i] += b[i];
             if (!A.empty()) A[i] += a[i];
             if (!H.empty()) H[i] += h[i];
+        }
+    }
+    if (applied_->active()) {
+        // Outside the bodies H = B / mu0 for the applied part too.
+        std::fill(b.begin(), b.end(), Vec3::Zero());
+        applied_->add(points, b, A);
+        for (std::size_t i = 0; i < n; ++i) {
+            B[i] += b[i];
+            if (!H.empty()) H[i] += b[i] / mu0;
         }
     }
 }

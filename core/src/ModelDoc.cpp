@@ -1,5 +1,6 @@
 #include "magFoam/ModelDoc.hpp"
 
+#include "magFoam/AppliedField.hpp"
 #include "magFoam/Error.hpp"
 #include "magFoam/FieldEvaluator.hpp"
 #include "magFoam/InductionModel.hpp"
@@ -26,7 +27,8 @@ const RegistryInfo& infoFor(const std::string& key) {
     static const std::vector<RegistryInfo> infos = {
         {"field", "field evaluator", "system/magSchemes.yaml, field: {type: ...}", "field"},
         {"induction", "induction model", "system/magSchemes.yaml, induction: {type: ...}", "induction"},
-        {"rigidBody", "rigid-body backend", "constant/rigidBody.yaml, type: ... (the whole file)", ""}};
+        {"rigidBody", "rigid-body backend", "constant/rigidBody.yaml, type: ... (the whole file)", ""},
+        {"appliedField", "applied field", "constant/appliedField.yaml, type: ... (the whole file)", ""}};
     for (const auto& i : infos)
         if (i.key == key) return i;
     throw std::logic_error("no registry " + key);
@@ -159,6 +161,7 @@ std::vector<TypeDocumentation> documentAll() {
     describeAll<FieldEvaluator>("field", out);
     describeAll<InductionModel>("induction", out);
     describeAll<RigidBodyBackend>("rigidBody", out);
+    describeAll<AppliedField>("appliedField", out);
     return out;
 }
 

@@ -2,13 +2,15 @@
 // the solver also skips induction entirely when no body is soft).
 #include "magFoam/InductionModel.hpp"
 
+#include "magFoam/AppliedField.hpp"
+
 namespace mag {
 
 namespace {
 class NoInduction final : public InductionModel {
 public:
     explicit NoInduction(const Dict&) {}
-    InductionReport converge(std::vector<Body>&, const FieldEvaluator&) override { return {}; }
+    InductionReport converge(std::vector<Body>&, const FieldEvaluator&, const AppliedField&) override { return {}; }
     std::string describe() const override { return "none"; }
 };
 const InductionModel::Add<NoInduction> addNone(
@@ -16,5 +18,10 @@ const InductionModel::Add<NoInduction> addNone(
                     {"type: none\n"},
                     {}});
 } // namespace
+
+InductionReport InductionModel::converge(std::vector<Body>& bodies, const FieldEvaluator& field) {
+    static const std::unique_ptr<AppliedField> none = AppliedField::New(Dict::fromString("type: none", "none"));
+    return converge(bodies, field, *none);
+}
 
 } // namespace mag

@@ -1,5 +1,6 @@
 #include "magFoam/Plugins.hpp"
 
+#include "magFoam/AppliedField.hpp"
 #include "magFoam/Dictionary.hpp"
 #include "magFoam/Error.hpp"
 #include "magFoam/FieldEvaluator.hpp"
@@ -32,7 +33,7 @@ std::map<std::string, void*>& openLibraries() {
 
 std::size_t registeredCount() {
     return FieldEvaluator::registry().size() + InductionModel::registry().size() +
-           RigidBodyBackend::registry().size();
+           RigidBodyBackend::registry().size() + AppliedField::registry().size();
 }
 
 std::string joinNames(const std::vector<std::string>& names) {
@@ -61,6 +62,10 @@ InductionModel::Registry& InductionModel::registry() {
     return r;
 }
 RigidBodyBackend::Registry& RigidBodyBackend::registry() {
+    static Registry r;
+    return r;
+}
+AppliedField::Registry& AppliedField::registry() {
     static Registry r;
     return r;
 }
@@ -93,11 +98,15 @@ std::unique_ptr<RigidBodyBackend> RigidBodyBackend::New(const Dict& dict) {
     plugins::loadStandardModules();
     return selectFromRegistry(registry(), dict, "rigid-body backend", "rigidBody");
 }
+std::unique_ptr<AppliedField> AppliedField::New(const Dict& dict) {
+    plugins::loadStandardModules();
+    return selectFromRegistry(registry(), dict, "applied field", "appliedField");
+}
 
 namespace plugins {
 
 const std::vector<std::string>& registryNames() {
-    static const std::vector<std::string> names = {"field", "induction", "rigidBody"};
+    static const std::vector<std::string> names = {"field", "induction", "rigidBody", "appliedField"};
     return names;
 }
 
@@ -174,6 +183,7 @@ std::map<std::string, std::vector<std::string>> typesFrom(const std::string& fil
     collect("field", FieldEvaluator::registry());
     collect("induction", InductionModel::registry());
     collect("rigidBody", RigidBodyBackend::registry());
+    collect("appliedField", AppliedField::registry());
     return out;
 }
 
@@ -309,6 +319,7 @@ std::string listModules() {
     table("field evaluators (magSchemes.yaml field.type)", FieldEvaluator::registry());
     table("induction models (magSchemes.yaml induction.type)", InductionModel::registry());
     table("rigid-body backends (rigidBody.yaml type)", RigidBodyBackend::registry());
+    table("applied fields (appliedField.yaml type)", AppliedField::registry());
     os << "plugin search path:";
     for (const auto& d : searchPath()) os << " " << d.string();
     os << "\n";

@@ -40,7 +40,7 @@ double bodyStableDeltaT(const Body& b, double size, double radius, double smalle
                   within(b.angularVelocity.norm() * radius,
                          smallestInertia > 0 ? w.totalTorque().norm() / smallestInertia * radius : 0.0));
     double omega2 = w.force.norm() / (b.mass() * size);
-    if (smallestInertia > 0) omega2 = std::max(omega2, std::abs(w.energy) / smallestInertia);
+    if (smallestInertia > 0) omega2 = std::max(omega2, std::abs(w.bodyEnergy()) / smallestInertia);
     if (omega2 > 0) dt = std::min(dt, 2.0 * std::acos(-1.0) / std::sqrt(omega2) / kStepsPerPeriod);
     return dt;
 }
@@ -82,7 +82,7 @@ std::optional<std::string> StepAudit::check(long step, double t, double dt, cons
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         kin += kineticEnergy(bodies[i], before[i]);
         if (!bodies[i].fixed) grav -= bodies[i].mass() * gravity_.dot(before[i].position);
-        mag += 0.5 * wrenches[i].energy; // each pair is seen from both sides
+        mag += 0.5 * wrenches[i].energy + wrenches[i].ownEnergy; // each pair is seen from both sides
     }
     const double total = kin + grav + mag;
     if (!haveStart_) startEnergy_ = total, haveStart_ = true;

@@ -38,6 +38,8 @@ public:
     // magSchemes.yaml `field:` and `induction:` (default {type: none}).
     Dict fieldDict() const;
     Dict inductionDict() const;
+    // constant/appliedField.yaml ({type: none} when the file is absent).
+    Dict appliedFieldDict() const;
 
     const std::map<std::string, Material>& materials() const { return materials_; }
     std::vector<Body>& bodies() { return bodies_; }
@@ -50,7 +52,7 @@ public:
 private:
     std::filesystem::path dir_;
     std::optional<ControlDict> control_;
-    std::optional<Dict> magSchemes_, rigidBody_;
+    std::optional<Dict> magSchemes_, rigidBody_, appliedField_;
     std::map<std::string, Material> materials_;
     std::vector<Body> bodies_;
 };

@@ -10,7 +10,8 @@
 //   d.reportUnused();                                  // typo -> InputError
 //
 // Supported value types: double (finite), int, bool, std::string, Vec3,
-// Quat (w, x, y, z), std::vector<double>, std::vector<std::string>.
+// Quat (w, x, y, z), std::vector<double>, std::vector<std::string>,
+// std::vector<std::vector<double>> (rows: matrices, tables).
 #pragma once
 
 #include "magFoam/Types.hpp"
@@ -127,6 +128,9 @@ extern template Vec3 Dict::get<Vec3>(const std::string&) const;
 extern template Quat Dict::get<Quat>(const std::string&) const;
 extern template std::vector<double> Dict::get<std::vector<double>>(const std::string&) const;
 extern template std::vector<std::string> Dict::get<std::vector<std::string>>(const std::string&) const;
+extern template std::vector<std::vector<double>> Dict::get<std::vector<std::vector<double>>>(const std::string&) const;
+extern template std::vector<std::vector<double>> Dict::get<std::vector<std::vector<double>>>(
+    const std::string&, const std::vector<std::vector<double>>&) const;
 extern template double Dict::get<double>(const std::string&, const double&) const;
 extern template int Dict::get<int>(const std::string&, const int&) const;
 extern template bool Dict::get<bool>(const std::string&, const bool&) const;

@@ -15,6 +15,7 @@
 
 namespace mag {
 
+class AppliedField;
 class FieldEvaluator;
 
 struct InductionReport {
@@ -28,8 +29,12 @@ class InductionModel {
 public:
     virtual ~InductionModel() = default;
 
-    // Update the magnetization of every soft body in `bodies` (others fixed).
-    virtual InductionReport converge(std::vector<Body>& bodies, const FieldEvaluator& field) = 0;
+    // Update the magnetization of every soft body in `bodies` (others fixed)
+    // in the field of the other bodies and the applied field (AppliedField.hpp).
+    virtual InductionReport converge(std::vector<Body>& bodies, const FieldEvaluator& field,
+                                     const AppliedField& applied) = 0;
+    // Without an applied field.
+    InductionReport converge(std::vector<Body>& bodies, const FieldEvaluator& field);
     virtual std::string describe() const = 0;
 
     // Restart state (docs/architecture.md): what the model carries from one

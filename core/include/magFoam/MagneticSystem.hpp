@@ -4,6 +4,7 @@
 // models only through the registries (FieldEvaluator, InductionModel).
 #pragma once
 
+#include "magFoam/AppliedField.hpp"
 #include "magFoam/Case.hpp"
 #include "magFoam/FieldEvaluator.hpp"
 #include "magFoam/InductionModel.hpp"
@@ -16,16 +17,21 @@ namespace mag {
 
 class MagneticSystem {
 public:
-    // Models from the case's system/magSchemes.yaml (field:, induction:).
+    // Models from the case's system/magSchemes.yaml (field:, induction:) and
+    // constant/appliedField.yaml.
     explicit MagneticSystem(const Case& c);
-    MagneticSystem(std::unique_ptr<FieldEvaluator> field, std::unique_ptr<InductionModel> induction);
+    MagneticSystem(std::unique_ptr<FieldEvaluator> field, std::unique_ptr<InductionModel> induction,
+                   std::unique_ptr<AppliedField> applied = nullptr);
+
+    // The time the applied field is taken at (magFoam: the start of each step).
+    void setTime(double t) { applied_->setTime(t); }
 
     // Converge soft-body magnetizations (Algorithm 1, lines 3-12). Does
     // nothing, and costs nothing, when no body is soft.
     InductionReport converge(std::vector<Body>& bodies) const;
 
     // Wrench on each body from all others (lines 13-24), through the field
-    // evaluator's addWrenches(): unmagnetized bodies are skipped; with
+    // evaluator's addWrenches(), plus the applied field's: unmagnetized bodies are skipped; with
     // skipFixedTargets, pairs of two fixed bodies are skipped. Bit-identical
     // for any thread count.
     std::vector<Wrench> wrenches(const std::vector<Body>& bodies, bool skipFixedTargets = false) const;
@@ -38,17 +44,19 @@ public:
     };
     Step step(std::vector<Body>& bodies) const;
 
-    // Total field of all bodies (except `exclude`, if set) at world points.
+    // Total field of all bodies (except `exclude`, if set) and the applied field at world points.
     void field(const std::vector<Body>& bodies, std::span<const Vec3> points, std::span<Vec3> B,
                std::span<Vec3> A = {}, std::span<Vec3> H = {}, const Body* exclude = nullptr) const;
 
     const FieldEvaluator& fieldEvaluator() const { return *field_; }
     const InductionModel& inductionModel() const { return *induction_; }
+    const AppliedField& appliedField() const { return *applied_; }
     InductionModel& inductionModel() { return *induction_; }  // restart state (InductionModel::readState)
 
 private:
     std::unique_ptr<FieldEvaluator> field_;
     std::unique_ptr<InductionModel> induction_;
+    std::unique_ptr<AppliedField> applied_;
 };
 
 } // namespace mag

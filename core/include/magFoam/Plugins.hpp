@@ -34,7 +34,7 @@ struct ManifestEntry {
     std::map<std::string, std::vector<std::string>> types; // registry -> type names, sorted
 };
 
-// The registries a manifest may name: field, induction, rigidBody.
+// The registries a manifest may name: field, induction, rigidBody, appliedField.
 const std::vector<std::string>& registryNames();
 
 // The libraries listed by the manifests (*.magPlugins.yaml) of the search path
@@ -50,7 +50,7 @@ std::vector<std::string> standardModules();
 void loadStandardModules();
 
 // Load the library that a manifest on the search path names for `type` in
-// `registry` (field, induction, rigidBody); false when none names it or the
+// `registry` (field, induction, rigidBody, appliedField); false when none names it or the
 // library is missing.
 bool loadForType(const std::string& registry, const std::string& type);
 

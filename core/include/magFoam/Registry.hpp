@@ -74,7 +74,7 @@ private:
 
 // Create a model from `dict`: reads `type`; when the name is unknown, loads the
 // library that a plugin manifest names for it in registry `manifestKey`
-// (field, induction, rigidBody; Plugins.hpp), else lib<mag+type>.so (OpenFOAM's
+// (field, induction, rigidBody, appliedField; Plugins.hpp), else lib<mag+type>.so (OpenFOAM's
 // solverNew habit), and otherwise fails listing the valid types and the loaded
 // libraries. `what` names the extension point in messages ("field evaluator").
 template <class Base>

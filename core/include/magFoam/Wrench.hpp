@@ -12,13 +12,26 @@ struct Wrench {
     Vec3 force = Vec3::Zero();            // N (Eq. 16)
     Vec3 torque = Vec3::Zero();           // magnetic torque, N m (Eq. 17)
     Vec3 mechanicalTorque = Vec3::Zero(); // about the target's centre of mass, N m (Eq. 18)
-    double energy = 0;                    // interaction energy, J (the model's own)
+    double energy = 0;                    // interaction energy with other bodies, J (each pair
+                                          // is in both bodies' wrenches)
+    double ownEnergy = 0;                 // energy in an applied field, J (this body's alone)
 
     Vec3 totalTorque() const { return torque + mechanicalTorque; }
+    // This body's magnetic energy: with the other bodies and in the applied field.
+    double bodyEnergy() const { return energy + ownEnergy; }
     Wrench& operator+=(const Wrench& o) {
         force += o.force, torque += o.torque, mechanicalTorque += o.mechanicalTorque, energy += o.energy;
+        ownEnergy += o.ownEnergy;
         return *this;
     }
 };
+
+// The magnetic energy of a scene from its bodies' wrenches: every pair once,
+// plus each body's energy in the applied field.
+template <class Wrenches> double sceneMagneticEnergy(const Wrenches& wrenches) {
+    double e = 0;
+    for (const Wrench& w : wrenches) e += 0.5 * w.energy + w.ownEnergy;
+    return e;
+}
 
 } // namespace mag

@@ -91,6 +91,7 @@
 // 40 sweeps where the default takes 5. Five soft balls chained on a 1 cm magnet (MBM):
 // 6-27 sweeps, about 6 ms per call (1280-triangle balls; nearly all of it the 65 field
 // points of 16 evaluate() calls). alpha = 0.05 .. 5 changes the sweeps (5-14), not M.
+#include <magFoam/AppliedField.hpp>
 #include <magFoam/Error.hpp>
 #include <magFoam/FieldEvaluator.hpp>
 #include <magFoam/InductionModel.hpp>
@@ -331,7 +332,9 @@ public:
         if (!(gamma_ > 0)) d.fail("gamma", "LLG gamma must be > 0 (gyromagnetic ratio, m/(A s))");
     }
 
-    InductionReport converge(std::vector<Body>& bodies, const FieldEvaluator& field) override {
+    using InductionModel::converge;
+    InductionReport converge(std::vector<Body>& bodies, const FieldEvaluator& field,
+                             const AppliedField& applied) override {
         InductionReport report;
         std::vector<std::size_t> soft;
         for (std::size_t i = 0; i < bodies.size(); ++i)
@@ -343,7 +346,7 @@ public:
         // Fields at the soft bodies' centres: permanent part and soft-to-soft maps.
         std::vector<Vec3> centres(n);
         for (std::size_t a = 0; a < n; ++a) centres[a] = bodies[soft[a]].position;
-        const std::vector<Vec3> Bfixed = permanentField(bodies, field, centres);
+        const std::vector<Vec3> Bfixed = permanentField(bodies, field, applied, centres);
         const std::vector<Mat3> G = softMaps(bodies, soft, field);  // G[b*n + a]: B at b per M_a (world)
 
         // Pairs (world frame) and state: stored pair, else from magnetizationBody.
@@ -495,10 +498,11 @@ private:
         return p;
     }
 
-    // B (world) of every magnetized non-soft body at the soft centres.
+    // B (world) of every magnetized non-soft body and of the applied field at the soft centres.
     static std::vector<Vec3> permanentField(const std::vector<Body>& bodies, const FieldEvaluator& field,
-                                            const std::vector<Vec3>& centres) {
+                                            const AppliedField& applied, const std::vector<Vec3>& centres) {
         std::vector<Vec3> total(centres.size(), Vec3::Zero()), B(centres.size());
+        applied.add(centres, total);
         for (const Body& source : bodies) {
             if (source.soft() || source.magnetizationBody.squaredNorm() == 0) continue;
             field.evaluate(source, centres, B);

@@ -99,7 +99,7 @@ void writeRow(std::ofstream& csv, const std::string& prefix, const Body& b, cons
     char line[512];
     std::snprintf(line, sizeof line, "%s%s,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g\n",
                   prefix.c_str(), b.name.c_str(), w.force.x(), w.force.y(), w.force.z(), T.x(), T.y(), T.z(),
-                  w.torque.x(), w.torque.y(), w.torque.z(), w.energy);
+                  w.torque.x(), w.torque.y(), w.torque.z(), w.bodyEnergy());
     csv << line;
 }
 
