@@ -51,7 +51,13 @@ Material Material::read(const std::string& name, const Dict& d) {
     } else {
         // The induction model checks these (names, ranges) when it meets the body.
         for (const auto& key : d.keys())
-            if (key != "model" && key != "density") m.properties[key] = d.get<double>(key);
+            if (key != "model" && key != "density") {
+                // Numbers, and switches (true/false as 1/0) such as demag's saturation.
+                const YAML::Node v = d.node()[key];
+                const std::string word = v.IsScalar() ? v.Scalar() : "";
+                const bool flag = word == "true" || word == "false" || word == "yes" || word == "no";
+                m.properties[key] = flag ? (d.get<bool>(key) ? 1.0 : 0.0) : d.get<double>(key);
+            }
         if (const auto js = m.properties.find("Js"); js != m.properties.end() && js->second > 2.5)
             d.warn("Js", fmt::format("{:g} T is above any iron's saturation polarization (~2.4 T at most): in mT? "
                                      "({:g} mT = {:g} T)", js->second, js->second, 1e-3 * js->second));
