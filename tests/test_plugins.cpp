@@ -65,6 +65,16 @@ TEST_CASE("a library that registers nothing loads with a warning", "[plugins]") 
     CHECK_FALSE(mag::plugins::load(pluginDir() + "/libmagEmptyPlugin.so"));
 }
 
+TEST_CASE("a plugin compiled for another CPU target is refused, naming the layout", "[plugins][badInput]") {
+#if defined(__x86_64__) && defined(__AVX__)
+    const std::string lib = pluginDir() + "/libmagLayoutMismatch.so";
+    CHECK_THROWS_WITH(mag::plugins::load(lib), Contains("another CPU target") && Contains("libmagLayoutMismatch.so"));
+    CHECK_FALSE(mag::FieldEvaluator::registry().has("layoutMismatchField")); // its types are gone again
+#else
+    SUCCEED("the core is built without AVX here: the test plugin has the same layout");
+#endif
+}
+
 TEST_CASE("listModules shows every registry", "[plugins]") {
     const std::string text = mag::plugins::listModules();
     CHECK_THAT(text, Contains("field evaluators") && Contains("induction models") && Contains("rigid-body backends") &&

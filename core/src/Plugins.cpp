@@ -53,6 +53,22 @@ std::filesystem::path coreLibraryDir() {
 
 const std::string& libraryBeingLoaded() { return currentLibrary(); }
 
+namespace {
+std::string& layoutMismatch() {
+    static std::string message;
+    return message;
+}
+} // namespace
+
+void noteModelLayout(std::size_t bodySize, std::size_t quatAlign) {
+    if (bodySize == sizeof(Body) && quatAlign == alignof(Quat)) return;
+    layoutMismatch() = "it was compiled for another CPU target than libmagCore (there a Body is " +
+                       std::to_string(bodySize) + " bytes and a quaternion aligned to " + std::to_string(quatAlign) +
+                       ", here " + std::to_string(sizeof(Body)) + " and " + std::to_string(alignof(Quat)) +
+                       "): build it with the compile options of magFoam::core (find_package(magFoam) and "
+                       "mag_add_plugin give them; by hand: the -march libmagCore was built with)";
+}
+
 FieldEvaluator::Registry& FieldEvaluator::registry() {
     static Registry r;
     return r;
@@ -215,10 +231,19 @@ bool openLibrary(const std::filesystem::path& path) {
     const std::size_t before = registeredCount();
     const std::string saved = currentLibrary();
     currentLibrary() = path.filename().string();
+    layoutMismatch().clear();
     void* handle = dlopen(key.c_str(), RTLD_NOW | RTLD_GLOBAL);
     currentLibrary() = saved;
     if (!handle) throw InputError(path.string() + ": cannot load plugin: " + dlerror());
     openLibraries()[key] = handle;
+    if (!layoutMismatch().empty()) {
+        const std::string lib = path.filename().string();
+        FieldEvaluator::registry().removeLibrary(lib);
+        InductionModel::registry().removeLibrary(lib);
+        RigidBodyBackend::registry().removeLibrary(lib);
+        AppliedField::registry().removeLibrary(lib);
+        throw InputError(path.string() + ": cannot use plugin: " + layoutMismatch());
+    }
     if (registeredCount() == before)
         spdlog::warn("library {} registered no new model types", path.filename().string());
     else

@@ -61,6 +61,7 @@ public:
 
     template <class T> struct Add {
         explicit Add(const std::string& name, TypeDoc doc = {}) {
+            noteModelLayout(sizeof(Body), alignof(Quat));
             registry().add(
                 name, [](const Dict& d) { return std::unique_ptr<AppliedField>(new T(d)); }, std::move(doc));
         }

@@ -22,6 +22,13 @@ namespace mag {
 // plugin loader around dlopen), so entries can say where they came from.
 const std::string& libraryBeingLoaded();
 
+// Called by every registration (the Add<T> helpers) with the layout the
+// registering library was compiled with: Eigen aligns Quat to the CPU target
+// (16 bytes for x86-64, 32 for x86-64-v3), which changes Body's layout, so a
+// plugin compiled for another target would read garbage from every Body. The
+// loader refuses such a library with a message (plugins::load).
+void noteModelLayout(std::size_t bodySize, std::size_t quatAlign);
+
 // A type's documentation, declared beside its registration (`-doc TYPE`,
 // ModelDoc.hpp). Keys, value types and defaults are not written here: -doc
 // records them while building the type from `examples`; this adds what the
@@ -66,6 +73,11 @@ public:
         return out;
     }
     const std::map<std::string, Entry>& entries() const { return entries_; }
+    // Forget what `library` registered (a library refused after loading).
+    void removeLibrary(const std::string& library) {
+        for (auto it = entries_.begin(); it != entries_.end();)
+            it = it->second.library == library ? entries_.erase(it) : std::next(it);
+    }
     std::size_t size() const { return entries_.size(); }
 
 private:
