@@ -82,8 +82,8 @@ std::optional<std::string> StepAudit::check(long step, double t, double dt, cons
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         kin += kineticEnergy(bodies[i], before[i]);
         if (!bodies[i].fixed) grav -= bodies[i].mass() * gravity_.dot(before[i].position);
-        mag += 0.5 * wrenches[i].energy + wrenches[i].ownEnergy; // each pair is seen from both sides
     }
+    mag = sceneMagneticEnergy(wrenches, [&](std::size_t i) { return bodies[i].soft(); });
     const double total = kin + grav + mag;
     if (!haveStart_) startEnergy_ = total, haveStart_ = true;
     lastEnergy_ = total;

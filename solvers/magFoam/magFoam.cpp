@@ -50,7 +50,7 @@ const Body* firstNonFinite(const std::vector<Body>& bodies, const std::vector<Wr
 void writeResults(ResultsWriter& writer, const MagneticSystem& magnets, const std::vector<Body>& bodies,
                   const Vec3& gravity, double t, long step, const std::vector<StateFile>& states) {
     const std::vector<Wrench> w = magnets.wrenches(bodies);
-    const double magnetic = sceneMagneticEnergy(w);
+    const double magnetic = sceneMagneticEnergy(w, [&](std::size_t i) { return bodies[i].soft(); });
     // The surfaces' per-face fields: B of the other bodies at every face centre.
     std::vector<std::vector<Vec3>> faceB(bodies.size());
     for (std::size_t i = 0; i < bodies.size(); ++i) {

@@ -27,10 +27,17 @@ struct Wrench {
 };
 
 // The magnetic energy of a scene from its bodies' wrenches: every pair once,
-// plus each body's energy in the applied field.
-template <class Wrenches> double sceneMagneticEnergy(const Wrenches& wrenches) {
+// plus each body's energy in the applied field, less half of every soft
+// body's: a linear induced moment m = K B has the energy -1/2 m . B in the
+// field B of the permanent sources, and the soft-soft pairs are part of it
+// (docs/physics.md#energy). `soft(i)` says whether body i is soft.
+template <class Wrenches, class IsSoft> double sceneMagneticEnergy(const Wrenches& wrenches, IsSoft soft) {
     double e = 0;
-    for (const Wrench& w : wrenches) e += 0.5 * w.energy + w.ownEnergy;
+    for (std::size_t i = 0; i < wrenches.size(); ++i) {
+        const Wrench& w = wrenches[i];
+        e += 0.5 * w.energy + w.ownEnergy;
+        if (soft(i)) e -= 0.5 * w.bodyEnergy();
+    }
     return e;
 }
 
