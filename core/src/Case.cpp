@@ -46,57 +46,63 @@ Quat readOrientation(const Dict& body) {
 
 } // namespace
 
+Body readBody(const Dict& b, const std::map<std::string, Material>& materials, const std::filesystem::path& caseDir,
+              ShapeCache& shapes, std::shared_ptr<const Shape> shape) {
+    Body body;
+    body.name = b.get<std::string>("name");
+
+    const std::string matName = b.get<std::string>("material");
+    auto mat = materials.find(matName);
+    if (mat == materials.end()) {
+        std::string valid;
+        for (const auto& [n, m] : materials) valid += (valid.empty() ? "" : ", ") + n;
+        b.fail("material", "unknown material '" + matName + "'; materials in constant/materials.yaml: " +
+                               (valid.empty() ? std::string("(none)") : valid));
+    }
+    body.material = mat->second;
+
+    body.shape = shape ? std::move(shape) : shapes.get(b.sub("geometry"), caseDir / "constant");
+
+    if (body.material.soft()) {
+        if (b.has("magnetization"))
+            b.fail("magnetization", "soft bodies take no magnetization: it is induced (material '" + matName +
+                                        "' is soft)");
+    } else {
+        const Vec3 dir = b.get<Vec3>("magnetization");
+        if (dir.norm() < 1e-12 && body.material.Br > 0)
+            b.fail("magnetization", "magnetization direction has zero length");
+        body.magnetizationBody = dir.norm() > 0 ? Vec3(dir.normalized() * body.material.Br / mu0) : Vec3::Zero();
+    }
+
+    body.position = b.get<Vec3>("position");
+    // Plausibility (warnings; docs/case-reference.md#plausibility).
+    const double across = 2 * body.shape->boundingRadius;
+    if (across > 1.0)
+        b.warn("geometry", fmt::format("body '{}' is {:.3g} m across: a mesh in mm without scale: 0.001?",
+                                       body.name, across));
+    else if (across > 0 && across < 1e-5)
+        b.warn("geometry", fmt::format("body '{}' is {:.3g} m across (below 10 um): a scale that is too small?",
+                                       body.name, across));
+    if (body.position.norm() > 10.0)
+        b.warn("position", fmt::format("{:.3g} m from the origin: in mm? Positions are in metres",
+                                       body.position.norm()));
+    body.orientation = readOrientation(b);
+    body.velocity = b.get<Vec3>("velocity", Vec3::Zero());
+    body.angularVelocity = b.get<Vec3>("angularVelocity", Vec3::Zero());
+    body.fixed = b.getWord("motion", {"dynamic", "fixed"}, "dynamic") == "fixed";
+    b.reportUnused();
+    return body;
+}
+
 std::vector<Body> readBodies(const Dict& dict, const std::map<std::string, Material>& materials,
                              const std::filesystem::path& caseDir) {
     ShapeCache shapes;
     std::vector<Body> bodies;
     std::set<std::string> names;
     for (const Dict& b : dict.list("bodies")) {
-        Body body;
-        body.name = b.get<std::string>("name");
-        if (!names.insert(body.name).second) b.fail("name", "duplicate body name '" + body.name + "'");
-
-        const std::string matName = b.get<std::string>("material");
-        auto mat = materials.find(matName);
-        if (mat == materials.end()) {
-            std::string valid;
-            for (const auto& [n, m] : materials) valid += (valid.empty() ? "" : ", ") + n;
-            b.fail("material", "unknown material '" + matName + "'; materials in constant/materials.yaml: " +
-                                   (valid.empty() ? std::string("(none)") : valid));
-        }
-        body.material = mat->second;
-
-        body.shape = shapes.get(b.sub("geometry"), caseDir / "constant");
-
-        if (body.material.soft()) {
-            if (b.has("magnetization"))
-                b.fail("magnetization", "soft bodies take no magnetization: it is induced (material '" + matName +
-                                            "' is soft)");
-        } else {
-            const Vec3 dir = b.get<Vec3>("magnetization");
-            if (dir.norm() < 1e-12 && body.material.Br > 0)
-                b.fail("magnetization", "magnetization direction has zero length");
-            body.magnetizationBody = dir.norm() > 0 ? Vec3(dir.normalized() * body.material.Br / mu0) : Vec3::Zero();
-        }
-
-        body.position = b.get<Vec3>("position");
-        // Plausibility (warnings; docs/case-reference.md#plausibility).
-        const double across = 2 * body.shape->boundingRadius;
-        if (across > 1.0)
-            b.warn("geometry", fmt::format("body '{}' is {:.3g} m across: a mesh in mm without scale: 0.001?",
-                                           body.name, across));
-        else if (across > 0 && across < 1e-5)
-            b.warn("geometry", fmt::format("body '{}' is {:.3g} m across (below 10 um): a scale that is too small?",
-                                           body.name, across));
-        if (body.position.norm() > 10.0)
-            b.warn("position", fmt::format("{:.3g} m from the origin: in mm? Positions are in metres",
-                                           body.position.norm()));
-        body.orientation = readOrientation(b);
-        body.velocity = b.get<Vec3>("velocity", Vec3::Zero());
-        body.angularVelocity = b.get<Vec3>("angularVelocity", Vec3::Zero());
-        body.fixed = b.getWord("motion", {"dynamic", "fixed"}, "dynamic") == "fixed";
-        b.reportUnused();
-        bodies.push_back(std::move(body));
+        const std::string name = b.get<std::string>("name");
+        if (!names.insert(name).second) b.fail("name", "duplicate body name '" + name + "'");
+        bodies.push_back(readBody(b, materials, caseDir, shapes));
     }
     dict.reportUnused();
     return bodies;

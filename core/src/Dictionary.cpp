@@ -120,6 +120,13 @@ Dict Dict::recording(const std::string& text, const std::string& name, std::shar
     return Dict(std::make_shared<FileState>(FileState{name, text, std::move(log)}), root, "");
 }
 
+Dict Dict::fromNode(const YAML::Node& node, const std::string& name) {
+    if (!node.IsMap())
+        throw InputError(name + ": expected a mapping of 'key: value' at the top level, got " + shortText(node));
+    rejectDuplicateKeys(node, name);
+    return Dict(std::make_shared<FileState>(FileState{name, "", nullptr}), node, "");
+}
+
 KeyRecord& KeyLog::at(const std::string& path) {
     for (auto& r : records)
         if (r.path == path) return r;

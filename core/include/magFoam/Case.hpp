@@ -18,6 +18,7 @@
 
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -56,6 +57,15 @@ private:
     std::map<std::string, Material> materials_;
     std::vector<Body> bodies_;
 };
+
+class ShapeCache;
+
+// One entry of the `bodies:` list, as readBodies reads it (the Python module
+// builds its bodies through it too). Its shape comes from `shapes` (geometry
+// files resolved against `caseDir/constant`), or is `shape` when given: the
+// entry then must not have a geometry key.
+Body readBody(const Dict& entry, const std::map<std::string, Material>& materials, const std::filesystem::path& caseDir,
+              ShapeCache& shapes, std::shared_ptr<const Shape> shape = nullptr);
 
 // Read constant/bodies.yaml (`bodies:` list) given the materials; geometry
 // files are resolved against `caseDir/constant`.

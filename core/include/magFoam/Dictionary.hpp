@@ -52,6 +52,10 @@ public:
     // throws InputError "file:line:col: ...".
     static Dict fromFile(const std::filesystem::path& file);
     static Dict fromString(const std::string& text, const std::string& name);
+    // A mapping built in code (the Python module converts dicts to nodes):
+    // read and checked as a file's, its messages name `name` where a file's
+    // name line:column.
+    static Dict fromNode(const YAML::Node& node, const std::string& name);
     // As fromString, recording every read of this dictionary and its
     // sub-dictionaries into `log`.
     static Dict recording(const std::string& text, const std::string& name, std::shared_ptr<KeyLog> log);
