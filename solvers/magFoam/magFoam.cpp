@@ -4,24 +4,16 @@
 // write times. Restart with `startFrom: latestTime`: the time folder holds
 // the bodies and the models' own state, so a restart continues bit for bit;
 // SIGINT/SIGTERM write the current state and exit 0; a NaN/inf stops the run
-// with the body and step named, after writing the last good state. Where the
-// run starts, its time axis and its log statistics: TimeLoop.hpp.
+// with the body and step named, after writing the last good state. The loop
+// itself: Solver.hpp (shared with the Python module); where the run starts,
+// its time axis and its log statistics: TimeLoop.hpp.
 #include <magFoam/ArgList.hpp>
 #include <magFoam/Case.hpp>
-#include <magFoam/Error.hpp>
-#include <magFoam/Log.hpp>
-#include <magFoam/BodyOverlap.hpp>
-#include <magFoam/MagneticSystem.hpp>
-#include <magFoam/ResultsWriter.hpp>
-#include <magFoam/RigidBodyBackend.hpp>
 #include <magFoam/Threads.hpp>
 
-#include "StepAudit.hpp"
-#include "TimeLoop.hpp"
+#include "Solver.hpp"
 
-#include <algorithm>
 #include <csignal>
-#include <limits>
 
 using namespace mag;
 
@@ -30,152 +22,15 @@ namespace {
 volatile std::sig_atomic_t stopRequested = 0;
 void onSignal(int) { stopRequested = 1; }
 
-// The first body whose state, or wrench if it can move, is not finite.
-const Body* firstNonFinite(const std::vector<Body>& bodies, const std::vector<Wrench>* wrenches) {
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-        const Body& b = bodies[i];
-        bool ok = b.position.allFinite() && b.orientation.coeffs().allFinite() && b.velocity.allFinite() &&
-                  b.angularVelocity.allFinite() && b.magnetizationBody.allFinite();
-        if (wrenches && !b.fixed) {
-            const Wrench& w = (*wrenches)[i];
-            ok = ok && w.force.allFinite() && w.torque.allFinite() && w.mechanicalTorque.allFinite();
-        }
-        if (!ok) return &b;
-    }
-    return nullptr;
-}
-
-// Everything the writers need at a write time: full wrenches and energies,
-// and (`states`) the models' restart files.
-void writeResults(ResultsWriter& writer, const MagneticSystem& magnets, const std::vector<Body>& bodies,
-                  const Vec3& gravity, double t, long step, const std::vector<StateFile>& states) {
-    const std::vector<Wrench> w = magnets.wrenches(bodies);
-    const double magnetic = sceneMagneticEnergy(w, [&](std::size_t i) { return bodies[i].soft(); });
-    // The surfaces' per-face fields: B of the other bodies at every face centre.
-    std::vector<std::vector<Vec3>> faceB(bodies.size());
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-        const std::vector<Vec3> centres = faceCentres(bodies[i]);
-        faceB[i].assign(centres.size(), Vec3::Zero());
-        magnets.field(bodies, centres, faceB[i], {}, {}, &bodies[i]);
-    }
-    writer.write(t, step, bodies, w, bodyEnergies(bodies, gravity, magnetic), states, faceB);
-}
-
-void describeRun(const Case& c, const MagneticSystem& magnets, const RigidBodyBackend& backend,
-                 const solver::TimeLoop& loop, int threads) {
-    const ControlDict& ctl = c.control();
-    if (loop.adaptive())
-        spdlog::info("magFoam: {} bodies, adaptive steps from {} s (minDeltaT {} s, maxDeltaT {} s) from t = {} to {}, "
-                     "{} thread(s)",
-                     c.bodies().size(), loop.deltaT(), ctl.minDeltaT, ctl.maxDeltaT, loop.startTime(), loop.endTime(),
-                     threads);
-    else
-        spdlog::info("magFoam: {} bodies, {} steps of {} s from t = {}, {} thread(s)", c.bodies().size(),
-                     loop.fixedSteps(), loop.deltaT(), loop.startTime(), threads);
-    spdlog::info("  field:      {}", magnets.fieldEvaluator().describe());
-    spdlog::info("  induction:  {}", c.hasSoftBodies() ? magnets.inductionModel().describe() : "none (no soft bodies)");
-    if (magnets.appliedField().active()) spdlog::info("  applied:    {}", magnets.appliedField().describe());
-    spdlog::info("  rigid body: {}", backend.describe());
-}
-
-// Adaptive steps: at most 20 % longer than the last one.
-constexpr double kMaxGrowth = 1.2;
-
 int run(const ArgList& args) {
     Case c = Case::read(args.caseDir(), args.schemesFile());
-    const int threads = setThreads(args, c);
-    MagneticSystem magnets(c);
-    std::unique_ptr<RigidBodyBackend> backend = RigidBodyBackend::New(c.rigidBody());
-    const Vec3 gravity = c.rigidBody().get<Vec3>("gravity", Vec3::Zero());
-    const bool soft = c.hasSoftBodies();
-    std::vector<Body>& bodies = c.bodies();
-    backend->setup(bodies);
-
-    // Start: from startTime, or from the newest time folder (bodies and models).
-    const solver::Start start = solver::startRun(c, bodies, magnets.inductionModel(), *backend);
-    // Bodies inside each other at the start: named, with how deep; the run goes
-    // on (MBM is defined there), but a contact solver will push them apart.
-    if (!start.folder)
-        warnOverlaps(bodies, (c.dir() / "constant" / "bodies.yaml").string(),
-                     "a contact solver pushes them apart at the start, adding kinetic energy");
-    solver::TimeLoop loop(c.control(), start);
-    ResultsWriter writer(c.dir(), start.folder ? std::optional<double>(start.time) : std::nullopt);
-    double lastDeltaT = start.lastDeltaT > 0 ? start.lastDeltaT : c.control().deltaT;
-    auto write = [&](const std::vector<Body>& state, double t, long step, bool withModels) {
-        magnets.setTime(t);
-        writeResults(writer, magnets, state, gravity, t, step,
-                     withModels ? solver::modelStates(magnets.inductionModel(), *backend, state,
-                                                      loop.adaptive() ? lastDeltaT : 0.0)
-                                : std::vector<StateFile>{});
-    };
-    describeRun(c, magnets, *backend, loop, threads);
-    if (!start.folder) write(bodies, loop.time(), loop.step(), true);
-
+    setThreads(args, c);
     std::signal(SIGINT, onSignal);
     std::signal(SIGTERM, onSignal);
-    solver::RunStatistics stats(loop, soft);
-    AuditSettings auditSettings = c.control().audit;
-    auditSettings.strict = auditSettings.strict || args.found("strict");
-    if (magnets.appliedField().timeDependent()) {
-        // A field that changes in time does work on the bodies: their energy may rise.
-        spdlog::info("  audit: the applied field changes in time (table:), so the energy check is off");
-        auditSettings.energyRise = std::numeric_limits<double>::infinity();
-    }
-    solver::StepAudit audit(bodies, auditSettings, magnets.fieldEvaluator().forceTolerance(), gravity);
-    // The last good per-step state (poses, velocities, magnetizations), to write
-    // on a non-finite one; the bodies' fixed models are not copied every step.
-    std::vector<BodyState> lastGood(bodies.size());
-    while (!loop.done()) {
-        std::copy(bodies.begin(), bodies.end(), lastGood.begin());
-        const double before = loop.time();
-        const long step = loop.step() + 1;
-
-        // Algorithm 1: induction loop (only with soft bodies), then wrenches.
-        stats.start(solver::RunStatistics::Phase::magnetic);
-        magnets.setTime(before);
-        const MagneticSystem::Step magnetic = magnets.step(bodies);
-        const std::vector<Wrench>& wrenches = magnetic.wrenches;
-        // The step's length: fixed, or what the motion and stiffness allow now.
-        const double proposal =
-            loop.adaptive() ? std::min(kMaxGrowth * lastDeltaT, audit.stableDeltaT(bodies, wrenches)) : 0.0;
-        const double dt = loop.begin(proposal);
-        const double t = loop.endOfStep();
-        if (soft) writer.writeInduction(t, step, magnetic.induction);
-        stats.induction(step, magnetic.induction);
-
-        // The rigid-body step under those wrenches.
-        stats.start(solver::RunStatistics::Phase::rigidBody);
-        if (!firstNonFinite(bodies, &wrenches)) backend->step(bodies, wrenches, dt);
-        stats.stepDone();
-
-        if (const Body* bad = firstNonFinite(bodies, &wrenches)) {
-            std::vector<Body> good = bodies;
-            for (std::size_t i = 0; i < good.size(); ++i) static_cast<BodyState&>(good[i]) = lastGood[i];
-            write(good, before, step - 1, false);  // the models hold the bad step's state
-            throw StateError("non-finite state or wrench of body '" + bad->name + "' in step " +
-                             std::to_string(step) + " (t = " + std::to_string(t) +
-                             " s); last good state written to " + timeName(before) + "/");
-        }
-        loop.end();
-        lastDeltaT = dt;
-        if (const auto stop = audit.check(step, t, dt, lastGood, bodies, wrenches)) {
-            write(bodies, t, step, true);
-            throw StateError(*stop + " (audit.strict; state written to " + timeName(t) + "/)");
-        }
-        if (loop.isWriteTime() || stopRequested) write(bodies, t, step, true);
-        if (stopRequested) {
-            spdlog::info("Stopped by signal at t = {}; state written to {}/", t, timeName(t));
-            break;
-        }
-        stats.progress(t, step, loop.adaptive() ? dt : 0.0);
-    }
-    stats.summary();
-    audit.summary(bodies);
-    spdlog::info("  field: {}", magnets.fieldEvaluator().describe());
-    if (const FieldStats fs = magnets.fieldEvaluator().stats(); !fs.counts.empty()) {
-        spdlog::info("  field counters: {}", fs.format());
-        for (const std::string& line : fs.pairSampleLines()) spdlog::info("  {}", line);
-    }
+    solver::RunOptions options;
+    options.strict = args.found("strict");
+    options.stop = &stopRequested;
+    solver::run(c, options);
     return 0;
 }
 

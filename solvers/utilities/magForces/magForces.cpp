@@ -1,16 +1,8 @@
 // magForces: magnetic forces and torques of a case's configuration, with the
 // induced magnetizations converged first (as in the solver's step), and an
 // optional sweep of one body (system/forcesDict.yaml), either along a
-// direction or about an axis:
-//
-//   sweep: {body: top, direction: [0, 0, 1], from: -0.01, to: 0.02, steps: 61}
-//   sweep: {body: top, rotate: {axis: [0, 0, 1], from: 0, to: 90, steps: 19}}
-//
-// Translation: offsets from..to (m) along the direction from the body's
-// position. Rotation: angles from..to (degrees, as orientations in
-// bodies.yaml) about the world-frame axis through the body's centre of mass,
-// applied to its orientation in bodies.yaml; only the orientation changes.
-// steps is the number of evaluations, from and to included (1: from only).
+// direction or about an axis (the evaluations: ForceSweep.hpp, shared with
+// the Python module).
 //
 // Writes postProcessing/forces.csv (world frame; torque about each body's
 // centre of mass = magnetic (Eq. 17) + mechanical (Eq. 18); energy = the
@@ -26,7 +18,8 @@
 #include <magFoam/MagneticSystem.hpp>
 #include <magFoam/Threads.hpp>
 
-#include <chrono>
+#include "ForceSweep.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -35,54 +28,6 @@
 using namespace mag;
 
 namespace {
-
-struct Sweep {
-    std::size_t body = 0;
-    bool rotate = false;
-    Vec3 direction = Vec3::UnitZ();  // translation: direction; rotation: axis (unit)
-    double from = 0, to = 0;         // m, or degrees
-    int steps = 1;
-};
-
-void readRange(const Dict& d, Sweep& s) {
-    s.from = d.get<double>("from");
-    s.to = d.get<double>("to");
-    s.steps = d.get<int>("steps");
-    if (s.steps < 1) d.fail("steps", "steps (the number of evaluations, from and to included) must be >= 1");
-    // As for orientation.angle in bodies.yaml (docs/case-reference.md#plausibility).
-    for (const char* key : {"from", "to"}) {
-        const double angle = d.get<double>(key), k = angle / (pi / 12);
-        if (s.rotate && angle != std::round(angle) && std::abs(angle) <= 2 * pi + 1e-9 && std::round(k) != 0 &&
-            std::abs(k - std::round(k)) < 1e-3 * std::abs(k))
-            d.warn(key, fmt::format("{:g} looks like radians ({:g} rad = {:g} deg); angles here are in degrees",
-                                    angle, angle, angle * 180 / pi));
-    }
-}
-
-Sweep readSweep(const Case& c, const Dict& dict) {
-    Sweep s;
-    const Dict d = dict.sub("sweep");
-    s.body = c.bodyIndex(d.get<std::string>("body"), d.where("body") + ": sweep.body");
-    const std::string forms = "a translation {body, direction, from, to, steps} or a rotation "
-                              "{body, rotate: {axis, from, to, steps}}";
-    std::string translationKey;
-    for (const char* k : {"direction", "from", "to", "steps"})
-        if (translationKey.empty() && d.has(k)) translationKey = k;
-    s.rotate = d.has("rotate");
-    if (s.rotate && !translationKey.empty())
-        d.fail(translationKey, "a sweep is " + forms + ", not both; with rotate, from, to and steps go inside it");
-    if (!s.rotate && translationKey.empty()) d.failHere("expected " + forms);
-    const Dict r = s.rotate ? d.sub("rotate") : d;
-    const std::string dirKey = s.rotate ? "axis" : "direction";
-    s.direction = r.get<Vec3>(dirKey);
-    if (s.direction.norm() == 0) r.fail(dirKey, "sweep " + dirKey + " has zero length");
-    s.direction.normalize();
-    readRange(r, s);
-    r.reportUnused();
-    d.reportUnused();
-    dict.reportUnused();
-    return s;
-}
 
 // One line per soft body: its converged (induced) magnetization.
 void printSoftBodies(const std::vector<Body>& bodies) {
@@ -112,9 +57,7 @@ int run(const ArgList& args) {
 
     warnOverlaps(c.bodies(), (c.dir() / "constant" / "bodies.yaml").string(),
                  "their forces follow the overlap model (docs/physics.md#overlap-models), not a contact");
-    const auto forcesFile = c.dir() / "system/forcesDict.yaml";
-    std::optional<Sweep> sweep;
-    if (std::filesystem::exists(forcesFile)) sweep = readSweep(c, Dict::fromFile(forcesFile));
+    const std::optional<forces::Sweep> sweep = forces::readForcesDict(c);
 
     std::filesystem::create_directories(c.dir() / "postProcessing");
     const auto csvPath = c.dir() / "postProcessing/forces.csv";
@@ -123,33 +66,12 @@ int run(const ArgList& args) {
     const std::string columns = "body,Fx,Fy,Fz,Tx,Ty,Tz,TmagX,TmagY,TmagZ,energy\n";
     csv << (sweep ? (sweep->rotate ? "step,angle," : "step,offset,") : "") << columns;
 
-    std::vector<Body>& bodies = c.bodies();
     const int steps = sweep ? sweep->steps : 1;
-    const Vec3 start = sweep ? bodies[sweep->body].position : Vec3::Zero();
-    const Quat startOrientation = sweep ? bodies[sweep->body].orientation : Quat::Identity();
-    double seconds = 0;
-    for (int k = 0; k < steps; ++k) {
-        double offset = 0;  // m, or degrees for a rotation
-        if (sweep) {
-            offset = steps == 1 ? sweep->from : sweep->from + (sweep->to - sweep->from) * k / (steps - 1);
-            Body& b = bodies[sweep->body];
-            if (sweep->rotate)  // about the world axis through the centre of mass: the position stays
-                b.orientation =
-                    (Quat(Eigen::AngleAxisd(offset * pi / 180.0, sweep->direction)) * startOrientation).normalized();
-            else
-                b.position = start + offset * sweep->direction;
-        }
-        const auto t0 = std::chrono::steady_clock::now();
-        const InductionReport ind = system.converge(bodies);
-        if (!ind.converged) {
-            std::string names;
-            for (const auto& n : ind.unconverged) names += " " + n;
-            spdlog::warn("induction did not converge ({} iterations, residual {:.3g}):{}", ind.iterations,
-                         ind.residual, names);
-        }
-        const std::vector<Wrench> w = system.wrenches(bodies);
-        seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-
+    const double seconds = forces::evaluate(c.bodies(), system, sweep, [&](const forces::Evaluation& e) {
+        const int k = e.step;
+        const double offset = e.offset;
+        const std::vector<Body>& bodies = e.bodies;
+        const std::vector<Wrench>& w = e.wrenches;
         std::string prefix;
         if (sweep) {
             char angle[64];
@@ -171,7 +93,7 @@ int run(const ArgList& args) {
             }
             printSoftBodies(bodies);
         }
-    }
+    });
     spdlog::info("{} evaluation(s), {:.3f} ms each; wrote {}", steps, 1e3 * seconds / steps, csvPath.string());
     spdlog::info("field: {}", system.fieldEvaluator().describe());
     for (const std::string& line : system.fieldEvaluator().stats().pairSampleLines()) spdlog::info("{}", line);
