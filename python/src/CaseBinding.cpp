@@ -17,6 +17,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <mutex>
 #include <optional>
 
 namespace mag::python {
@@ -57,6 +58,7 @@ public:
         std::optional<forces::Sweep> sweep;
         {
             py::gil_scoped_release release;
+            std::lock_guard lock(mutex_);
             applyThreads();
             warnOverlaps(case_.bodies(), (case_.dir() / "constant" / "bodies.yaml").string(),
                          "their forces follow the overlap model (docs/physics.md#overlap-models), not a contact");
@@ -99,6 +101,7 @@ public:
         std::vector<Record> records;
         {
             py::gil_scoped_release release;
+            std::lock_guard lock(mutex_);
             applyThreads();
             Case c = case_;  // the run moves the bodies of a copy: run() again starts where the case does
             solver::RunOptions options;
@@ -169,6 +172,7 @@ private:
     Case case_;
     std::optional<int> threads_;
     std::unique_ptr<MagneticSystem> system_;
+    std::mutex mutex_;  // one evaluation at a time (the GIL is released meanwhile)
 };
 
 } // namespace

@@ -115,6 +115,16 @@ void System::addBody(const std::string& name, const py::kwargs& kwargs) {
         throw InputError(what + ": scale: only with file= or mesh=");
     std::shared_ptr<const Shape> shape;
     auto isMap = [](const py::object& o) { return py::isinstance<py::dict>(o); };
+    // Files relative to the Python process's working folder, not a case's constant/.
+    auto absolute = [](const py::object& path) {
+        return std::filesystem::absolute(py::str(py::module_::import("os").attr("fspath")(path)).cast<std::string>())
+            .string();
+    };
+    if (entry.contains("geometry") && isMap(entry["geometry"]) && entry["geometry"].contains("file")) {
+        py::dict g = entry["geometry"].attr("copy")();  // the caller's dict stays as it was
+        g["file"] = absolute(g["file"]);
+        entry["geometry"] = g;
+    }
     if (!box.is_none()) entry["geometry"] = py::dict(py::arg("box") = isMap(box) ? box : py::dict(py::arg("size") = box));
     if (!sphere.is_none())
         entry["geometry"] = py::dict(py::arg("sphere") = isMap(sphere) ? sphere : py::dict(py::arg("radius") = sphere));
@@ -128,9 +138,7 @@ void System::addBody(const std::string& name, const py::kwargs& kwargs) {
         entry["geometry"] = py::dict(py::arg("cylinder") = c);
     }
     if (!file.is_none()) {
-        // Relative to the Python process's working folder, not a case's constant/.
-        const std::string path = py::str(py::module_::import("os").attr("fspath")(file)).cast<std::string>();
-        py::dict g(py::arg("file") = std::filesystem::absolute(path).string());
+        py::dict g(py::arg("file") = absolute(file));
         if (!scale.is_none()) g["scale"] = scale;
         entry["geometry"] = g;
     }
@@ -200,6 +208,7 @@ std::size_t System::index(const std::string& name, const std::string& context) c
 }
 
 std::vector<std::string> System::names() const {
+    std::lock_guard lock(mutex_);
     std::vector<std::string> out;
     for (const auto& b : bodies_) out.push_back(b.name);
     return out;
@@ -218,8 +227,14 @@ void System::setPose(const std::string& name, const py::object& position, const 
 }
 
 py::tuple System::pose(const std::string& name) const {
-    const Body& b = bodies_[index(name, argName("pose", name))];
-    return py::make_tuple(toArray(b.position), toArray(b.orientation));
+    const std::size_t i = index(name, argName("pose", name));
+    Vec3 p;
+    Quat q;
+    {
+        std::lock_guard lock(mutex_);  // not in the middle of another thread's sweep
+        p = bodies_[i].position, q = bodies_[i].orientation;
+    }
+    return py::make_tuple(toArray(p), toArray(q));
 }
 
 std::vector<Wrench> System::evaluate() {

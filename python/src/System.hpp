@@ -63,7 +63,7 @@ private:
     std::map<std::string, Material> materials_;
     ShapeCache shapes_;
     int threads_ = 1;
-    std::mutex mutex_;
+    mutable std::mutex mutex_;  // held while evaluating (GIL released) or changing bodies_
 };
 
 void bindSystem(py::module_& m);

@@ -64,3 +64,25 @@ def test_field_is_finite_on_and_near_edges():
     s.add_body("m", box=[0.01] * 3, Br=1.0, magnetization=[0, 0, 1])
     P = np.array([[0.005 + 1e-9, 0.005 + 1e-9, 0.0], [0.0, 0.0, 0.005], [0.005 + 1e-9, 0.0, 0.005 + 1e-9]])
     assert np.isfinite(s.field(P)).all()
+
+
+def test_mesh_and_file_geometry_equal_the_box(tmp_path, monkeypatch):
+    # The same 10 x 6 x 4 mm block as arrays, as an OBJ file (relative to the
+    # working folder, both forms) and as box=: one closed form, so the fields
+    # agree to rounding (the file is read in single precision: 1e-7).
+    h = 0.5 * np.array(SIZE)
+    V = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)]) * h
+    F = np.array([[0, 1, 3], [0, 3, 2], [4, 6, 7], [4, 7, 5], [0, 4, 5], [0, 5, 1],
+                  [2, 3, 7], [2, 7, 6], [0, 2, 6], [0, 6, 4], [1, 5, 7], [1, 7, 3]])
+    monkeypatch.chdir(tmp_path)
+    with open("block.obj", "w") as f:
+        f.writelines(f"v {x!r} {y!r} {z!r}\n" for x, y, z in V)
+        f.writelines(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in F)
+    P = np.random.default_rng(5).uniform(-0.02, 0.02, (200, 3))
+    ref = mf.System()
+    ref.add_body("m", box=SIZE, Br=BR, magnetization=[0, 0, 1])
+    for kwargs, tol in [({"mesh": (V, F)}, 1e-12), ({"file": "block.obj"}, 1e-6),
+                        ({"geometry": {"file": "block.obj"}}, 1e-6)]:
+        s = mf.System()
+        s.add_body("m", Br=BR, magnetization=[0, 0, 1], **kwargs)
+        assert relative_error(s.field(P), ref.field(P)).max() < tol, kwargs
