@@ -56,6 +56,7 @@ public:
         };
         std::vector<Row> rows;
         std::optional<forces::Sweep> sweep;
+        double seconds = 0;
         {
             py::gil_scoped_release release;
             std::lock_guard lock(mutex_);
@@ -64,7 +65,7 @@ public:
                          "their forces follow the overlap model (docs/physics.md#overlap-models), not a contact");
             sweep = forces::readForcesDict(case_);
             std::vector<Body> bodies = case_.bodies();  // each call starts from the case's state
-            forces::evaluate(bodies, *system_, sweep, [&](const forces::Evaluation& e) {
+            seconds = forces::evaluate(bodies, *system_, sweep, [&](const forces::Evaluation& e) {
                 rows.push_back(Row{e.step, e.offset, e.wrenches});
             });
         }
@@ -83,6 +84,7 @@ public:
         out["Tmag"] = table(k, n, 3, [&](auto s, auto b, auto c) { return rows[s].w[b].torque[c]; });
         out["energy"] = table(k, n, 1, [&](auto s, auto b, auto) { return rows[s].w[b].bodyEnergy(); })
                             .attr("reshape")(k, n);
+        out["seconds"] = seconds;  // converging and the wrenches, as magForces times them
         return out;
     }
 
@@ -189,8 +191,9 @@ Case(path, schemes=None, threads=None)
              R"(magForces in memory: the configuration, or the sweep of system/forcesDict.yaml.
 
 Returns a dict: bodies (names), F, T, Tmag (k, n, 3) (N, N m about the centre
-of mass, the magnetic part), energy (k, n) (J), and for a sweep step (k,) and
-offset (m) or angle (degrees) (k,); k = 1 without a sweep.)")
+of mass, the magnetic part), energy (k, n) (J), for a sweep step (k,) and
+offset (m) or angle (degrees) (k,); k = 1 without a sweep; seconds: the time
+spent converging and in the wrenches, as magForces' "ms each".)")
         .def("run", &PyCase::run, py::arg("end_time") = py::none(), py::arg("strict") = false,
              R"(magFoam: the transient run (writes the same files into the case folder).
 
