@@ -24,6 +24,7 @@ YAML::Node toNode(const py::handle& value, const std::string& path) {
     if (py::hasattr(value, "__fspath__")) return YAML::Node(py::str(value.attr("__fspath__")()).cast<std::string>());
     if (py::isinstance<py::dict>(value)) {
         YAML::Node map(YAML::NodeType::Map);
+        map.SetStyle(YAML::EmitterStyle::Flow);  // messages quote values as [0, 1], {n: 4}
         for (const auto& [k, v] : value.cast<py::dict>()) {
             if (!py::isinstance<py::str>(k))
                 throw py::type_error(path + ": keys must be strings, got " + py::repr(k).cast<std::string>());
@@ -34,6 +35,7 @@ YAML::Node toNode(const py::handle& value, const std::string& path) {
     }
     if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
         YAML::Node seq(YAML::NodeType::Sequence);
+        seq.SetStyle(YAML::EmitterStyle::Flow);
         std::size_t i = 0;
         for (const auto& item : value) seq.push_back(toNode(item, path + "[" + std::to_string(i++) + "]"));
         return seq;

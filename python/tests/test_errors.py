@@ -24,7 +24,7 @@ def test_misspelled_key_names_the_closest_valid_one():
 
 def test_bad_values_name_the_key_and_what_was_expected():
     s = cube_system()
-    with pytest.raises(mf.InputError, match=r"add_body\('b'\): magnetization: expected a vector of 3 numbers"):
+    with pytest.raises(mf.InputError, match=r"add_body\('b'\): magnetization: expected a vector of 3 numbers like \[0, 0, 1\], got '\[0, 1\]'"):
         s.add_body("b", box=[0.01] * 3, Br=1.0, magnetization=[0, 1])
     with pytest.raises(mf.InputError, match=r"add_body\('b'\): position: expected a vector of 3 finite numbers"):
         s.add_body("b", box=[0.01] * 3, Br=1.0, magnetization=[0, 0, 1], position=[0, 0, np.nan])
