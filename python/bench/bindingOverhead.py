@@ -7,6 +7,10 @@ on the same case, the same points and one thread (docs/python.md#performance).
   n = 1e2..1e5 random points around a 1 cm cube (tutorials/cubeField).
 - sweep: System.sweep and Case.forces per pose against magForces' "ms each"
   on tutorials/twoCubes (301 poses of the upper cube).
+- the binding's own cost, measured in one process so that the load of the
+  machine cancels: field() on a system without bodies (conversion, GIL,
+  result arrays; no physics) against field() on the cube, and Case.forces'
+  wall time against the C++ loop it times inside the same call.
 Each timing is the best of `--repeat` runs. An app evaluates once, on models
 built for the run (MBM builds its per-shape tables on first use), so every
 Python timing is the first evaluation of a freshly built system too ("warm":
@@ -61,6 +65,7 @@ def main():
         case = work / "cubeField"
         shutil.copytree(ROOT / "tutorials/cubeField", case, ignore=shutil.ignore_patterns("postProcessing", "log.*"))
         rng = np.random.default_rng(0)
+        binding = []
         for n in (100, 1000, 10000, 100000):
             P = rng.uniform(-0.02, 0.02, (n, 3))
             np.savetxt(case / "points.csv", P, delimiter=",", fmt="%.17g")
@@ -78,6 +83,8 @@ def main():
                 return s
             warm = best(warmed, field, args.repeat) * 1e3
             print(f"{n:>8} {cpp:>12.3f} {py:>10.3f} {n / py * 1e3:>13.4g} {py / cpp - 1:>+9.1%} {warm:>9.3f}")
+            empty = best(mf.System, field, args.repeat) * 1e3
+            binding.append(f"{n:>8} {empty:>10.3f} ms of {warm:.3f} ms: {empty / warm:.1%}")
 
         print("\nsweep: cost per pose, two 1 cm cubes (tutorials/twoCubes, 301 poses), one thread")
         case = work / "twoCubes"
@@ -91,6 +98,13 @@ def main():
         # the C++ loop inside Case.forces, timed as magForces times its own
         loop = min(mf.Case(case, threads=1).forces()["seconds"] for _ in range(args.repeat)) * 1e3 / 301
 
+        def wall_minus_loop():
+            c = mf.Case(case, threads=1)
+            t0 = time.perf_counter()
+            r = c.forces()
+            return time.perf_counter() - t0 - r["seconds"]
+        outside = min(wall_minus_loop() for _ in range(args.repeat)) * 1e3 / 301
+
         def one_by_one(s):
             for p in P:
                 s.set_pose("top", position=p)
@@ -101,6 +115,12 @@ def main():
         print(f"  Case.forces (the forcesDict)     {forces * 1e3:8.1f} us/pose  ({forces / cpp - 1:+.1%})")
         print(f"    its C++ loop, timed inside     {loop * 1e3:8.1f} us/pose  ({loop / cpp - 1:+.1%})")
         print(f"  set_pose + wrench per pose       {single * 1e3:8.1f} us/pose  ({single / cpp - 1:+.1%})")
+        print("\nthe binding's own cost, in one process")
+        print("  field() without bodies against field() on the cube (warm), B, A and H:")
+        for line in binding:
+            print("  " + line)
+        print(f"  Case.forces outside its C++ loop: {outside * 1e3:.2f} us/pose "
+              f"({outside / loop:.1%} of the loop)")
     finally:
         shutil.rmtree(work)
 

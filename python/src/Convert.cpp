@@ -52,12 +52,13 @@ Dict toDict(const py::handle& value, const std::string& name) {
     return Dict::fromNode(toNode(value, ""), name);
 }
 
-std::vector<Vec3> toVec3s(const py::handle& value, const std::string& what) {
-    py::array_t<double, py::array::c_style | py::array::forcecast> a;
+Vec3View viewVec3s(const py::handle& value, const std::string& what) {
+    Vec3View v;
     try {
-        a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
+        v.array = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
     } catch (const py::error_already_set&) {
     }
+    const auto& a = v.array;
     if (!a || a.ndim() < 1 || a.shape(a.ndim() - 1) != 3) {
         std::string got = py::str(py::type::of(value).attr("__name__")).cast<std::string>();
         if (a) {
@@ -68,16 +69,28 @@ std::vector<Vec3> toVec3s(const py::handle& value, const std::string& what) {
         throw InputError(what + ": expected an array of shape (n, 3), got " + got);
     }
     const std::size_t n = static_cast<std::size_t>(a.size() / 3);
-    std::vector<Vec3> out(n);
     const double* p = a.data();
-    for (std::size_t i = 0; i < n; ++i) {
-        out[i] = Vec3(p[3 * i], p[3 * i + 1], p[3 * i + 2]);
-        if (!out[i].allFinite())
-            throw InputError(what + "[" + std::to_string(i) + "]: expected 3 finite numbers, got [" +
-                             std::to_string(out[i].x()) + ", " + std::to_string(out[i].y()) + ", " +
-                             std::to_string(out[i].z()) + "]");
-    }
-    return out;
+    for (std::size_t i = 0; i < 3 * n; ++i)
+        if (!std::isfinite(p[i]))
+            throw InputError(what + "[" + std::to_string(i / 3) + "]: expected 3 finite numbers, got [" +
+                             std::to_string(p[i - i % 3]) + ", " + std::to_string(p[i - i % 3 + 1]) + ", " +
+                             std::to_string(p[i - i % 3 + 2]) + "]");
+    v.vectors = std::span<const Vec3>(reinterpret_cast<const Vec3*>(p), n);
+    v.leading.assign(a.shape(), a.shape() + a.ndim() - 1);
+    return v;
+}
+
+std::vector<Vec3> toVec3s(const py::handle& value, const std::string& what) {
+    const Vec3View v = viewVec3s(value, what);
+    return std::vector<Vec3>(v.vectors.begin(), v.vectors.end());
+}
+
+std::pair<py::array_t<double>, std::span<Vec3>> newVec3s(const std::vector<py::ssize_t>& leading) {
+    std::vector<py::ssize_t> shape = leading;
+    shape.push_back(3);
+    py::array_t<double> a(shape);
+    const std::size_t n = static_cast<std::size_t>(a.size() / 3);
+    return {a, std::span<Vec3>(reinterpret_cast<Vec3*>(a.mutable_data()), n)};
 }
 
 py::array_t<double> toArray(const std::vector<Vec3>& v, std::optional<std::vector<py::ssize_t>> shape) {

@@ -317,25 +317,26 @@ py::tuple System::sweep(const std::string& name, const py::object& positions, co
 }
 
 py::object System::field(const py::object& points, bool withA, bool withH) {
-    const std::vector<Vec3> x = toVec3s(points, "magfoam.System.field: points");
-    std::vector<py::ssize_t> shape;
-    {
-        const auto a = py::array::ensure(points);
-        for (py::ssize_t d = 0; d + 1 < a.ndim(); ++d) shape.push_back(a.shape(d));
-    }
-    std::vector<Vec3> B(x.size()), A(withA ? x.size() : 0), H(withH ? x.size() : 0);
+    // In place: the points are read from the caller's array and B, A, H
+    // written into the arrays returned (no copies, docs/python.md#performance).
+    const Vec3View x = viewVec3s(points, "magfoam.System.field: points");
+    auto [B, b] = newVec3s(x.leading);
+    py::array_t<double> A, H;
+    std::span<Vec3> a, h;
+    if (withA) std::tie(A, a) = newVec3s(x.leading);
+    if (withH) std::tie(H, h) = newVec3s(x.leading);
     {
         py::gil_scoped_release release;
         std::lock_guard lock(mutex_);
         setThreads(threads_);
         system_->converge(bodies_);  // soft bodies magnetized first, as magField does
-        system_->field(bodies_, x, B, A, H);
+        system_->field(bodies_, x.vectors, b, a, h);
     }
-    if (!withA && !withH) return toArray(B, shape);
+    if (!withA && !withH) return std::move(B);
     py::list out;
-    out.append(toArray(B, shape));
-    if (withA) out.append(toArray(A, shape));
-    if (withH) out.append(toArray(H, shape));
+    out.append(B);
+    if (withA) out.append(A);
+    if (withH) out.append(H);
     return py::tuple(out);
 }
 
