@@ -6,6 +6,7 @@
 #include <fstream>
 #include <cstdlib>
 #include <random>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -19,6 +20,14 @@ inline std::filesystem::path buildDir() {
 }
 inline std::string testPluginDir() { return (buildDir() / "tests/plugins").string(); }
 inline std::string appPath(const std::string& name) { return (buildDir() / "bin" / name).string(); }
+
+// A file's whole text ("" when it cannot be read).
+inline std::string slurp(const std::filesystem::path& p) {
+    std::ifstream in(p);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
 
 class TempCase {
 public:

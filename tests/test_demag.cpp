@@ -12,6 +12,10 @@
 
 #include <catch2/catch.hpp>
 
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
 using namespace mag;
 using Catch::Matchers::Contains;
 
@@ -39,10 +43,9 @@ Body softBody(const std::string& geometry, const std::string& material, const st
 
 TEST_CASE("demag: N of a box from its mesh equals Aharoni's prism factors, N of a sphere 1/3", "[demag]") {
     // A linear body of chi = 1e9 in a uniform H takes M = (I/chi + N)^-1 H, so
-    // H_i / M_i - 1/chi is N_ii. The mesh route converges slowly at edges (A's
-    // gradient is log-singular there): at the default split 4 x 4, Gauss 8 x 8
-    // a cube's N is 3.9e-6 off 1/3 and this box's 7e-6 off Aharoni (measured;
-    // docs/physics.md#demag); the issue asks for 1e-3.
+    // H_i / M_i - 1/chi is N_ii. At the default (graded fan, order 20) this
+    // box's N is 7.5e-12 off Aharoni (measured; docs/physics.md#demag): 1e-9
+    // leaves room for the solve's tolerance; the issue asks for 1e-3.
     const Eigen::Vector3d exact = oracle::prismDemagFactors(Eigen::Vector3d(0.005, 0.01, 0.015));
     for (int axis = 0; axis < 3; ++axis) {
         Vec3 B = Vec3::Zero();
@@ -52,12 +55,13 @@ TEST_CASE("demag: N of a box from its mesh equals Aharoni's prism factors, N of 
         const Body b = softBody("{box: {size: [0.01, 0.02, 0.03]}}", "chi: 1e9, Js: 1e9, saturation: false", field);
         const Vec3 M = b.magnetization();
         INFO("axis " << axis << ": M " << M.transpose());
-        CHECK(B[axis] / mu0 / M[axis] - 1e-9 == Approx(exact[axis]).margin(1e-5));
-        CHECK(std::abs(M[(axis + 1) % 3]) + std::abs(M[(axis + 2) % 3]) < 1e-5 * std::abs(M[axis]));
+        CHECK(B[axis] / mu0 / M[axis] - 1e-9 == Approx(exact[axis]).margin(1e-9));
+        CHECK(std::abs(M[(axis + 1) % 3]) + std::abs(M[(axis + 2) % 3]) < 1e-9 * std::abs(M[axis]));
     }
     const Body s = softBody("{sphere: {radius: 0.005, subdivisions: 3}}", "chi: 1e9, Js: 1e9, saturation: false",
                             "type: uniform\nB: [0, 0, 0.001]\n");
-    CHECK(0.001 / mu0 / s.magnetization().z() == Approx(1.0 / 3.0).margin(1e-5));
+    // 1280 triangles: fan order 4 within the cost budget, 1.5e-7 off 1/3 (measured).
+    CHECK(0.001 / mu0 / s.magnetization().z() == Approx(1.0 / 3.0).margin(1e-6));
 }
 
 TEST_CASE("demag: a soft sphere in a gradient field feels V G M0, M0 = 3 chi/(chi + 3) H", "[demag]") {
@@ -98,8 +102,156 @@ TEST_CASE("demag: a soft sphere in a uniform field feels no force and no torque"
                             "type: uniform\nB: [0.003, -0.002, 0.001]\n", "", &w);
     const double scale = b.magneticMoment().norm() * 0.0037;  // |m| |B|
     CHECK(w.force.norm() == 0);                                 // G = 0
-    // M is along B up to the mesh's anisotropy of N (~1e-7 of 1/3): measured 1e-7.
-    CHECK(w.totalTorque().norm() < 1e-6 * scale);
+    // The icosphere has the icosahedron's rotations, under which a symmetric
+    // tensor is a multiple of I: its exact N is I/3. The rule for N respects
+    // each triangle's symmetry, so the computed N is isotropic to rounding
+    // (1e-15, measured) and M is along B: the issue's bound, 1e-9 of |m||B|.
+    CHECK(w.totalTorque().norm() < 1e-9 * scale);
+}
+
+TEST_CASE("demag: a soft prolate spheroid from an STL turns its long axis to a uniform field (Osborn)", "[demag]") {
+    // 9 x 3 x 3 mm (semi-axes 4.5, 1.5, 1.5 mm along x, y, z), chi = 1000,
+    // linear, in B = 5 mT at 45 degrees in the x-y plane. Exact for the
+    // ellipsoid: M_i = chi H_i / (1 + chi N_i) on the principal axes (uniform M
+    // is exact), torque mu0 V M x H. The mesh is the oracle's icosphere
+    // (level 4, 5120 triangles) scaled, written as ASCII STL; its faceting
+    // (volume 0.3 % low, N_x a few 1e-4 off) is inside the issue's 3 %.
+    const Eigen::Vector3d semi(0.0045, 0.0015, 0.0015);
+    const oracle::TriMesh mesh = oracle::scaledMesh(oracle::icosphereMesh(4), semi);
+    magtest::TempCase c;
+    {
+        std::ofstream stl(c.path("constant/geometry/spheroid.stl"));
+        stl.precision(17);
+        stl << "solid spheroid\n";
+        for (const auto& t : mesh.triangles) {
+            const Eigen::Vector3d &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]], &d = mesh.vertices[t[2]];
+            const Eigen::Vector3d n = (b - a).cross(d - a).normalized();
+            stl << "facet normal " << n.x() << ' ' << n.y() << ' ' << n.z() << "\n outer loop\n";
+            for (const auto* v : {&a, &b, &d}) stl << "  vertex " << v->x() << ' ' << v->y() << ' ' << v->z() << '\n';
+            stl << " endloop\nendfacet\n";
+        }
+        stl << "endsolid spheroid\n";
+    }
+    const double chi = 1000, B0 = 0.005;
+    c.write("system/controlDict.yaml", "endTime: 0.01\ndeltaT: 0.001\n");
+    c.write("system/magSchemes.yaml", "field: {type: MBM}\ninduction: {type: demag, tolerance: 1e-10}\n");
+    c.write("constant/materials.yaml", "steel: {model: soft, density: 7850, chi: 1000, Js: 2.0, saturation: false}\n");
+    c.write("constant/bodies.yaml", "bodies:\n  - {name: needle, geometry: {file: geometry/spheroid.stl}, "
+                                    "material: steel, position: [0, 0, 0]}\n");
+    const Vec3 B = B0 * Vec3(1, 1, 0).normalized();
+    c.write("constant/appliedField.yaml", "type: uniform\nB: [" + std::to_string(B.x()) + ", " + std::to_string(B.y()) +
+                                              ", 0]\n");
+    Case k = Case::read(c.dir());
+    MagneticSystem s(k);
+    REQUIRE(s.converge(k.bodies()).converged);
+    const Wrench w = s.wrenches(k.bodies()).at(0);
+
+    const Eigen::Vector3d N = oracle::ellipsoidDemagFactors(semi);
+    const Vec3 H = B / mu0;
+    const Vec3 M(chi * H.x() / (1 + chi * N.x()), chi * H.y() / (1 + chi * N.y()), chi * H.z() / (1 + chi * N.z()));
+    const double V = 4.0 / 3.0 * std::numbers::pi * semi.prod();
+    const Vec3 torque = mu0 * V * M.cross(H);
+    INFO("torque " << w.totalTorque().transpose() << ", exact " << torque.transpose() << ", relative error "
+                   << (w.totalTorque() - torque).norm() / torque.norm());
+    CHECK(torque.z() > 0); // x (the long axis) turns toward B
+    CHECK((w.totalTorque() - torque).norm() < 0.03 * torque.norm());
+    CHECK(w.force.norm() == 0); // uniform field
+}
+
+namespace {
+
+// A 4 x 4 x 12 mm soft rod (long axis z) flies past a fixed 1 cm N42 cube
+// (magnetized along z) at 3 m/s, its axis 10 mm from the cube's centre plane
+// (3 mm from the side face at the closest), no contacts, no gravity, Delta t
+// 2e-5 s: it is slung around the cube, up to 8 m/s. Returns (E_end - E_0) /
+// peak kinetic energy from energy.csv.
+double flyByDrift(const std::string& material, const std::string& schemes, const std::string& spin = "") {
+    magtest::TempCase c;
+    c.write("system/controlDict.yaml", "endTime: 0.0266\ndeltaT: 2e-5\nwriteInterval: 0.0002\n");
+    c.write("system/magSchemes.yaml", schemes);
+    c.write("constant/materials.yaml", "N42: {model: permanent, Br: 1.3, density: 7500}\nsteel: " + material + "\n");
+    c.write("constant/bodies.yaml",
+            "bodies:\n"
+            "  - {name: magnet, geometry: {box: {size: [0.01, 0.01, 0.01]}}, material: N42, magnetization: [0, 0, 1],\n"
+            "     position: [0, 0, 0], motion: fixed}\n"
+            "  - {name: rod, geometry: {box: {size: [0.004, 0.004, 0.012]}}, material: steel,\n"
+            "     position: [-0.04, 0.01, 0], velocity: [3, 0, 0]" + spin + "}\n");
+    c.write("constant/rigidBody.yaml", "type: free\ngravity: [0, 0, 0]\n");
+    const std::string cmd = "cd '" + c.dir().string() + "' && '" + magtest::appPath("magFoam") + "' > log 2>&1";
+    REQUIRE(WEXITSTATUS(std::system(cmd.c_str())) == 0);
+    std::istringstream csv(magtest::slurp(c.path("postProcessing/energy.csv")));
+    std::string line;
+    std::getline(csv, line); // time,kinetic,gravitational,magnetic,total
+    double first = 0, last = 0, peak = 0;
+    bool haveFirst = false;
+    int rows = 0;
+    while (std::getline(csv, line)) {
+        double v[5];
+        std::istringstream row(line);
+        for (double& x : v) {
+            std::string cell;
+            std::getline(row, cell, ',');
+            x = std::stod(cell);
+        }
+        if (!haveFirst) first = v[4], haveFirst = true;
+        last = v[4], peak = std::max(peak, v[1]), ++rows;
+    }
+    REQUIRE(rows > 100);
+    return (last - first) / peak;
+}
+
+} // namespace
+
+TEST_CASE("demag: a soft rod slung past a magnet conserves energy; the drift falls with the tolerance", "[demag]") {
+    // The issue's bar: |drift| <= 1e-3 of the peak kinetic energy. Measured
+    // (MBM adaptive tolerance 1e-4, the default): 2.3e-5; spinning at 200
+    // rad/s: 1.7e-5. By tolerance: 1e-2 1.8e-4, 1e-5 6.0e-6.
+    const std::string steel = "{model: soft, chi: 1000, Js: 2.0, density: 7850}";
+    const std::string demag = "induction: {type: demag, tolerance: 1e-10}\n";
+    const double drift = flyByDrift(steel, "field: {type: MBM}\n" + demag);
+    CHECK(std::abs(drift) <= 1e-3);
+    const double spinning = flyByDrift(steel, "field: {type: MBM}\n" + demag, ", angularVelocity: [0, 200, 0]");
+    CHECK(std::abs(spinning) <= 1e-3);
+    const double coarse = flyByDrift(steel, "field: {type: MBM, quadrature: {type: adaptive, tolerance: 1e-2}}\n" + demag);
+    const double fine = flyByDrift(steel, "field: {type: MBM, quadrature: {type: adaptive, tolerance: 1e-5}}\n" + demag);
+    INFO("drift " << drift << ", spinning " << spinning << ", tolerance 1e-2: " << coarse << ", 1e-5: " << fine);
+    CHECK(std::abs(fine) < 0.1 * std::abs(coarse));
+    // The same bar catches a model whose force is not a gradient: the paper's
+    // LLG (field at the centre of mass) gains 3.6 % here (measured).
+    const double llg = flyByDrift("{model: soft, k: 5, Js: 2.0, density: 7850}",
+                                  "field: {type: MBM}\ninduction: {type: LLG, tolerance: 1e-10}\n");
+    INFO("LLG drift " << llg);
+    CHECK(std::abs(llg) > 1e-2);
+}
+
+TEST_CASE("fieldIntegral: each evaluator's one-pass integral is -dU/dM_t of its own interaction energy", "[demag]") {
+    // The base class takes three energies with unit target magnetizations;
+    // the evaluators read the integral off one interaction(). Same samples
+    // (regular rule, EDM, dipole pairs): equal to rounding. The adaptive rule
+    // refines for the target's magnetization, so the two use other samples:
+    // equal to its tolerance. Overlapping, touching and apart; a rotated target.
+    const std::vector<std::pair<std::string, double>> fields = {
+        {"{type: MBM, quadrature: {type: regular, n: 3}, overlap: charge}", 1e-12},
+        {"{type: MBM, quadrature: {type: regular, n: 3}, overlap: amperian}", 1e-12},
+        {"{type: MBM}", 1e-3},
+        {"{type: EDM, n: 3}", 1e-12},
+        {"{type: hybrid, near: {type: MBM, quadrature: {type: regular, n: 2}}, far: {type: EDM, n: 2}}", 1e-12}};
+    for (const auto& [field, tol] : fields)
+        for (double z : {0.006, 0.01, 0.03, 0.2}) {
+            magtest::TempCase c;
+            c.twoCubes(0.0, field);
+            Case k = Case::read(c.dir());
+            MagneticSystem s(k);
+            Body& target = k.bodies()[1];
+            target.position = Vec3(0.002, -0.001, z);
+            target.orientation = Quat(Eigen::AngleAxisd(0.4, Vec3(1, 2, 3).normalized()));
+            const FieldEvaluator& e = s.fieldEvaluator();
+            const Vec3 fast = e.fieldIntegral(k.bodies()[0], target);
+            const Vec3 slow = e.FieldEvaluator::fieldIntegral(k.bodies()[0], target);
+            INFO(field << " at z = " << z << ": " << fast.transpose() << " against " << slow.transpose());
+            CHECK(fast.norm() > 0);
+            CHECK((fast - slow).norm() <= tol * slow.norm());
+        }
 }
 
 TEST_CASE("demag: bad soft materials name the key", "[demag][badInput]") {

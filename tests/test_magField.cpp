@@ -38,12 +38,7 @@ void cubeCase(magtest::TempCase& c, const std::string& sets) {
     c.write("system/fieldDict.yaml", "sets:\n" + sets);
 }
 
-std::string slurp(const std::filesystem::path& p) {
-    std::ifstream in(p);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
+using magtest::slurp;
 
 int runMagField(const magtest::TempCase& c, std::string& log) {
     const std::string cmd = "cd '" + c.dir().string() + "' && '" + magtest::appPath("magField") + "' > log 2>&1";

@@ -20,12 +20,7 @@ namespace {
 
 using mag::Vec3;
 
-std::string slurp(const std::filesystem::path& p) {
-    std::ifstream in(p);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
+using magtest::slurp;
 
 int runMagForces(const magtest::TempCase& c, std::string& log) {
     const std::string cmd = "cd '" + c.dir().string() + "' && '" + magtest::appPath("magForces") + "' > log 2>&1";

@@ -32,12 +32,7 @@ int runIn(const std::filesystem::path& dir, const std::string& log) {
     return WEXITSTATUS(std::system(cmd.c_str()));
 }
 
-std::string slurp(const std::filesystem::path& p) {
-    std::ifstream in(p);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
+using magtest::slurp;
 
 // The CSV's lines without those at time t (the extra write of a split run).
 std::vector<std::string> rowsExcept(const std::filesystem::path& csv, double t) {

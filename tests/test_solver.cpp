@@ -24,12 +24,7 @@ int runIn(const std::filesystem::path& dir, const std::string& cmd) {
     return WEXITSTATUS(std::system(full.c_str()));
 }
 
-std::string slurp(const std::filesystem::path& p) {
-    std::ifstream in(p);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
+using magtest::slurp;
 
 // Two attracting cubes, the upper one falling onto the fixed lower one.
 void fallingCubes(magtest::TempCase& c, const std::string& backend, double endTime, const std::string& extra = "") {

@@ -33,9 +33,18 @@ void FieldEvaluator::addWrenches(std::span<const Body> bodies, std::span<const s
 }
 
 void FieldEvaluator::PairChunks::add(std::size_t i, std::size_t j) {
-    const bool targetIsI = bodies_[j].fixed && !bodies_[i].fixed;
-    pairs_.push_back(targetIsI ? BodyPair{j, i} : BodyPair{i, j});
+    pairs_.push_back(orientedPair(bodies_, i, j));
     if (pairs_.size() == kChunk) finish();
+}
+
+Vec3 FieldEvaluator::fieldIntegral(const Body& source, const Body& target) const {
+    Body unit = target;
+    Vec3 integral;
+    for (int k = 0; k < 3; ++k) {
+        unit.magnetizationBody = target.orientation.conjugate() * Vec3::Unit(k);
+        integral[k] = -interaction(source, unit).energy;
+    }
+    return integral;
 }
 
 void FieldEvaluator::PairChunks::finish() {

@@ -19,6 +19,10 @@ const InductionModel::Add<NoInduction> addNone(
                     {}});
 } // namespace
 
+double InductionModel::sceneEnergy(const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches) const {
+    return sceneMagneticEnergy(wrenches, [&](std::size_t i) { return bodies[i].soft(); });
+}
+
 InductionReport InductionModel::converge(std::vector<Body>& bodies, const FieldEvaluator& field) {
     static const std::unique_ptr<AppliedField> none = AppliedField::New(Dict::fromString("type: none", "none"));
     return converge(bodies, field, *none);

@@ -38,7 +38,18 @@ void writeResults(ResultsWriter& writer, const MagneticSystem& magnets, const st
                   const Vec3& gravity, double t, long step, const std::vector<StateFile>& states,
                   const std::function<void(const WriteRecord&)>& onWrite) {
     const std::vector<Wrench> w = magnets.wrenches(bodies);
-    const double magnetic = sceneMagneticEnergy(w, [&](std::size_t i) { return bodies[i].soft(); });
+    // A soft body's magnetization in the state is the one its last step was
+    // taken with (converged at the step's start, and restarts continue from
+    // it bit for bit); energy.csv counts the energy of the written pose, so
+    // its magnetic energy is taken with the magnetizations converged there.
+    double magnetic = 0;
+    if (std::any_of(bodies.begin(), bodies.end(), [](const Body& b) { return b.soft(); })) {
+        std::vector<Body> settled = bodies;
+        magnets.converge(settled);
+        magnetic = magnets.magneticEnergy(settled, magnets.wrenches(settled));
+    } else {
+        magnetic = magnets.magneticEnergy(bodies, w);
+    }
     // The surfaces' per-face fields: B of the other bodies at every face centre.
     std::vector<std::vector<Vec3>> faceB(bodies.size());
     for (std::size_t i = 0; i < bodies.size(); ++i) {
@@ -151,7 +162,7 @@ void run(Case& c, const RunOptions& options) {
         }
         loop.end();
         lastDeltaT = dt;
-        if (const auto stop = audit.check(step, t, dt, lastGood, bodies, wrenches)) {
+        if (const auto stop = audit.check(step, t, dt, lastGood, bodies, wrenches, magnets.magneticEnergy(bodies, wrenches))) {
             write(bodies, t, step, true);
             throw StateError(*stop + " (audit.strict; state written to " + timeName(t) + "/)");
         }

@@ -66,7 +66,8 @@ StepAudit::StepAudit(const std::vector<Body>& bodies, const AuditSettings& setti
 }
 
 std::optional<std::string> StepAudit::check(long step, double t, double dt, const std::vector<BodyState>& before,
-                                            const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches) {
+                                            const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches,
+                                            double magnetic) {
     std::optional<std::string> stop;
     auto report = [&](const std::string& message) {
         ++warnings_;
@@ -83,7 +84,7 @@ std::optional<std::string> StepAudit::check(long step, double t, double dt, cons
         kin += kineticEnergy(bodies[i], before[i]);
         if (!bodies[i].fixed) grav -= bodies[i].mass() * gravity_.dot(before[i].position);
     }
-    mag = sceneMagneticEnergy(wrenches, [&](std::size_t i) { return bodies[i].soft(); });
+    mag = magnetic;
     const double total = kin + grav + mag;
     if (!haveStart_) startEnergy_ = total, haveStart_ = true;
     lastEnergy_ = total;

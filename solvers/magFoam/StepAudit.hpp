@@ -38,11 +38,13 @@ public:
               const Vec3& gravity);
 
     // After step `step` (ending at t) of length dt: `before` is the bodies'
-    // state at its start, `bodies` at its end, `wrenches` those of the start.
+    // state at its start, `bodies` at its end, `wrenches` those of the start
+    // and `magnetic` the scene's magnetic energy from them (MagneticSystem).
     // Logs a warning per new episode; returns the message to stop with when
     // strict.
     std::optional<std::string> check(long step, double t, double dt, const std::vector<BodyState>& before,
-                                     const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches);
+                                     const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches,
+                                     double magnetic);
 
     // "Audit: ..." lines for the end of the run.
     void summary(const std::vector<Body>& bodies) const;

@@ -85,6 +85,15 @@ public:
     // Wrench on `target` exerted by `source`.
     virtual Wrench interaction(const Body& source, const Body& target) const = 0;
 
+    // The field `source` exerts on `target`, integrated over the target's
+    // volume as the interaction energy sees it: -dU/dM_t (T m^3, world frame),
+    // U = interaction(source, target).energy, which is linear in the target's
+    // magnetization M_t. An induced magnetization solved from it is stationary
+    // for the energy the forces are the gradient of (docs/physics.md#demag).
+    // The default takes three energies with unit target magnetizations; the
+    // evaluators here read Wrench::fieldIntegral of one interaction() instead.
+    virtual Vec3 fieldIntegral(const Body& source, const Body& target) const;
+
     // One line for logs: type and main settings.
     virtual std::string describe() const = 0;
 
@@ -102,6 +111,15 @@ public:
     // (addPairWrenches), in increasing (i, j) order of `active`.
     virtual void addWrenches(std::span<const Body> bodies, std::span<const std::size_t> active,
                              bool skipFixedPairs, std::span<Wrench> out) const;
+
+    // How addWrenches() evaluates the pair i < j: interaction(source, target)
+    // with the body that moves sampled (a fixed body needs no wrench of its
+    // own), otherwise target j. The pair's energy comes from the target's
+    // samples, so an induction model that wants the response of either body
+    // to be stationary for that energy asks in this orientation.
+    static BodyPair orientedPair(std::span<const Body> bodies, std::size_t i, std::size_t j) {
+        return bodies[j].fixed && !bodies[i].fixed ? BodyPair{j, i} : BodyPair{i, j};
+    }
 
     // Counters since construction (pairs by tier, softened pairs, ...) for
     // logs, tests and benchmarks; the default has none.

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "magFoam/Body.hpp"
+#include "magFoam/Wrench.hpp"
 #include "magFoam/Dictionary.hpp"
 #include "magFoam/Registry.hpp"
 
@@ -36,6 +37,13 @@ public:
     // Without an applied field.
     InductionReport converge(std::vector<Body>& bodies, const FieldEvaluator& field);
     virtual std::string describe() const = 0;
+
+    // The scene's magnetic energy (J) from the wrenches at the converged
+    // magnetizations (docs/physics.md#energy). The default counts every pair
+    // once and each soft body's interaction and applied-field energy at half,
+    // the energy -1/2 m . B of a linear induced moment; a model with a
+    // material law adds each soft body's own energy instead.
+    virtual double sceneEnergy(const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches) const;
 
     // Restart state (docs/architecture.md): what the model carries from one
     // converge() call to the next beyond the bodies' magnetizations. The

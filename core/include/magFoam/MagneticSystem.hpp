@@ -44,6 +44,12 @@ public:
     };
     Step step(std::vector<Body>& bodies) const;
 
+    // The scene's magnetic energy (J) from wrenches() at converged
+    // magnetizations, as the induction model counts soft bodies.
+    double magneticEnergy(const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches) const {
+        return induction_->sceneEnergy(bodies, wrenches);
+    }
+
     // Total field of all bodies (except `exclude`, if set) and the applied field at world points.
     void field(const std::vector<Body>& bodies, std::span<const Vec3> points, std::span<Vec3> B,
                std::span<Vec3> A = {}, std::span<Vec3> H = {}, const Body* exclude = nullptr) const;

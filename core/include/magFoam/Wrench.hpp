@@ -15,13 +15,18 @@ struct Wrench {
     double energy = 0;                    // interaction energy with other bodies, J (each pair
                                           // is in both bodies' wrenches)
     double ownEnergy = 0;                 // energy in an applied field, J (this body's alone)
+    // -d energy / d M_t (T m^3): the target-volume integral of the field its
+    // energy sees (B, or mu0 H for the charge model in overlap), set by
+    // evaluators' interaction() (FieldEvaluator::fieldIntegral); the
+    // reactions addPairWrenches adds to the sources do not carry it.
+    Vec3 fieldIntegral = Vec3::Zero();
 
     Vec3 totalTorque() const { return torque + mechanicalTorque; }
     // This body's magnetic energy: with the other bodies and in the applied field.
     double bodyEnergy() const { return energy + ownEnergy; }
     Wrench& operator+=(const Wrench& o) {
         force += o.force, torque += o.torque, mechanicalTorque += o.mechanicalTorque, energy += o.energy;
-        ownEnergy += o.ownEnergy;
+        ownEnergy += o.ownEnergy, fieldIntegral += o.fieldIntegral;
         return *this;
     }
 };

@@ -175,6 +175,11 @@ public:
         noteSoftened(softened, source, source, eps);
     }
 
+    // The dipole sum's energy is linear in M_t with no refinement: one call.
+    Vec3 fieldIntegral(const Body& source, const Body& target) const override {
+        return interaction(source, target).fieldIntegral;
+    }
+
     Wrench interaction(const Body& source, const Body& target) const override {
         const double Rs = source.shape->boundingRadius, Rt = target.shape->boundingRadius;
         int n = n_;
@@ -208,6 +213,7 @@ public:
             w.torque += mt.cross(B);                 // Eq. 6
             w.mechanicalTorque += lever.cross(F);    // about the target's COM
             w.energy -= mt.dot(B);
+            w.fieldIntegral += tt.cellVolume * B; // mt = cellVolume R M_t
         }
         noteSoftened(softened, source, target, eps);
         return w;

@@ -75,10 +75,12 @@ Wrench interactionWrench(const PolyhedronTables& source, const Vec3& Ms,
         // T = mu0 Mt x int H dV, int H dV = -sum w phi n, phi = Ms . S / (4 pi)
         out.torque = -(mu0 / kFourPi) * Mt.cross(phiN);
         out.energy = (mu0 / kFourPi) * chargeEnergy;
+        out.fieldIntegral = -(mu0 / kFourPi) * phiN; // mu0 int H dV
     } else {
         nxA *= mu0 / kFourPi;                // sum w n x A = int B dV
         out.torque = Mt.cross(nxA); // Eq. 17
         out.energy = -Mt.dot(nxA);
+        out.fieldIntegral = nxA;
     }
     return out;
 }

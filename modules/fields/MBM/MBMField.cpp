@@ -124,6 +124,7 @@ public:
                 w.torque += partial[b].torque;
                 w.mechanicalTorque += partial[b].mechanicalTorque;
                 w.energy += partial[b].energy;
+                w.fieldIntegral += partial[b].fieldIntegral;
             }
         }
         Wrench out;
@@ -131,10 +132,24 @@ public:
         out.torque = source.orientation * w.torque;
         out.mechanicalTorque = source.orientation * w.mechanicalTorque;
         out.energy = w.energy;
+        out.fieldIntegral = source.orientation * w.fieldIntegral;
         // Counted last: an atomic in the middle changes how the compiler fuses
         // the multiply-adds of the sample transform, and so the result's last bits.
         samples_.fetch_add(n, std::memory_order_relaxed);
         return out;
+    }
+
+    // One interaction(): the kernel integrates the field with the wrench. The
+    // adaptive rule refines for the target's force, so a target without
+    // magnetization yet (a soft body's first step) is given one along the
+    // source's: the integral does not depend on it, only the refinement.
+    Vec3 fieldIntegral(const Body& source, const Body& target) const override {
+        if (target.magnetizationBody.squaredNorm() > 0) return interaction(source, target).fieldIntegral;
+        Body probe = target;
+        const Vec3 ms = source.magnetization();
+        probe.magnetizationBody =
+            target.orientation.conjugate() * (ms.squaredNorm() > 0 ? Vec3(ms.normalized()) : Vec3::UnitZ());
+        return interaction(source, probe).fieldIntegral;
     }
 
     std::string describe() const override {
@@ -180,6 +195,7 @@ private:
         out.torque = source.orientation * r.wrench.torque;
         out.mechanicalTorque = source.orientation * r.wrench.mechanicalTorque;
         out.energy = r.wrench.energy;
+        out.fieldIntegral = source.orientation * r.wrench.fieldIntegral;
         const std::uint64_t n = r.samples;
         samples_.fetch_add(n, std::memory_order_relaxed);
         pairs_.fetch_add(1, std::memory_order_relaxed);

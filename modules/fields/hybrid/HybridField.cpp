@@ -94,6 +94,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numbers>
 #include <sstream>
 #include <vector>
 
@@ -161,7 +162,10 @@ public:
         if (isDipolePair(farFieldBody(source, dipoleReach(source)), farFieldBody(target, dipoleReach(target)))) {
             dipolePairs_.fetch_add(1, std::memory_order_relaxed);
             spdlog::debug("hybrid: '{}' -> '{}': dipole pair", source.name, target.name);
-            return dipolePairWrench(source.magneticMoment(), target.magneticMoment(), target.position - source.position);
+            Wrench w =
+                dipolePairWrench(source.magneticMoment(), target.magneticMoment(), target.position - source.position);
+            w.fieldIntegral = dipoleFieldIntegral(source, target);
+            return w;
         }
         const double distance = (target.position - source.position).norm();
         const double gap = this->gap(source, target, distance);
@@ -171,6 +175,17 @@ public:
         spdlog::debug("hybrid: '{}' -> '{}': {} gap {:g} m -> {}", source.name, target.name, switchName_, gap,
                       isNear ? "near" : "far");
         return (isNear ? *near_ : *far_).interaction(source, target);
+    }
+
+    // The tier interaction() takes: a dipole pair's energy -m_t . B_s(c_t)
+    // gives V_t B_s(c_t); near and far pairs ask their evaluator.
+    Vec3 fieldIntegral(const Body& source, const Body& target) const override {
+        if (isDipolePair(farFieldBody(source, dipoleReach(source)), farFieldBody(target, dipoleReach(target))))
+            return dipoleFieldIntegral(source, target);
+        const double distance = (target.position - source.position).norm();
+        const double Rs = source.shape->boundingRadius, Rt = target.shape->boundingRadius;
+        const bool isNear = gap(source, target, distance) < threshold_ * std::max(Rs, Rt);
+        return (isNear ? *near_ : *far_).fieldIntegral(source, target);
     }
 
     // The near tier's promise; the far tiers' errors fall with distance (dipoleTolerance).
@@ -241,6 +256,14 @@ public:
     std::uint64_t farCount() const { return farPairs_; }
 
 private:
+    // V_t B_s(c_t) of the source's point dipole (docs/physics.md#dipoles-and-edm).
+    static Vec3 dipoleFieldIntegral(const Body& source, const Body& target) {
+        const Vec3 m = source.magneticMoment(), r = target.position - source.position;
+        const double d = r.norm();
+        const Vec3 u = r / d;
+        return target.shape->volume * (mu0 / (4 * std::numbers::pi)) * (3 * u.dot(m) * u - m) / (d * d * d);
+    }
+
     // Gap between the two bodies as the switch measures it (m); `distance`
     // between their centres of mass.
     double gap(const Body& a, const Body& b, double distance) const {

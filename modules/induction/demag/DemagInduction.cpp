@@ -2,23 +2,24 @@
 // magnetization M solving
 //   M = f(H_eff),  H_eff = B-bar_applied/mu0 + B-bar_others/mu0 - N M,
 // with N the body's demagnetization tensor computed from its mesh
-// (DemagTensor.hpp, once per shape) and the fields of everything else averaged
-// over the body's volume by the boundary integral of n x A. Linear:
-// f(H) = chi H; with saturation f(H) = Ms tanh(chi |H| / Ms) H/|H| (monotone,
-// reaching Ms, the gradient of a convex energy). A uniformly magnetized body's
-// force with M held is the gradient of M . integral B dV (what MBM's boundary
-// integral of Eq. 16 computes), so with the volume averages here the induced
-// wrench is the gradient of U = -1/2 mu0 V H-bar . M (linear material) and
-// energy is conserved; the paper's LLG model (field at the centre) is not.
+// (DemagTensor.hpp, once per shape) and B-bar the fields of everything else
+// averaged over the body's volume as the field evaluator's interaction energy
+// sees them (FieldEvaluator::fieldIntegral: the same samples and overlap model
+// as the forces). Linear: f(H) = chi H; with saturation
+// f(H) = Ms tanh(chi |H| / Ms) H/|H| (monotone, reaching Ms, the gradient of a
+// convex co-energy). The force on a uniformly magnetized body with M held is
+// the gradient of its interaction energy, linear in M; with M stationary for
+// E = mu0 V (g(M) + 1/2 M.N M) - M.I the induced wrench is the gradient of E
+// and energy is conserved; the paper's LLG model (field at the centre) is not.
 //
-//   induction: {type: demag, tolerance: 1e-8, maxIterations: 200, order: 3}
+//   induction: {type: demag, tolerance: 1e-8, maxIterations: 200}
 //
 // Keys: kDoc at the registration below (magFoam -doc demag). Materials:
 //   steel: {model: soft, chi: 1000, Js: 2.0, density: 7850}   # or mur: 1001
-// chi (or mur = 1 + chi) >= 0, Js > 0 (saturation polarization mu0 Ms, T);
+// chi (or mur = 1 + chi) > 0, Js > 0 (saturation polarization mu0 Ms, T);
 // `saturation: false` in the material keeps it linear.
 //
-// Solve: the other bodies' volume-averaged fields are linear in their
+// Solve: the other bodies' field integrals are linear in their
 // magnetizations, so per call they are evaluated once per source (permanent
 // bodies and the applied field as they are, each soft body with its three unit
 // magnetizations: a 3x3 map per soft pair), then block Gauss-Seidel over the
@@ -46,6 +47,17 @@ struct SoftMaterial {
     double chi = 0, Ms = 0;
     bool saturation = true;
 };
+
+// The internal energy density of a soft material over mu0, g(|M|) with
+// g' = f^-1 ((A/m)^2):
+// linear |M|^2 / (2 chi); tanh (Ms^2 / chi) (x artanh x + 1/2 ln(1 - x^2)),
+// x = |M| / Ms, the Legendre transform of the co-energy (Ms^2/chi) ln cosh.
+double internalEnergy(const SoftMaterial& m, double M) {
+    if (!m.saturation) return M * M / (2 * m.chi);
+    const double x = std::min(M / m.Ms, 1 - 1e-16);
+    if (x < 1e-4) return M * M / (2 * m.chi) * (1 + x * x / 6); // series: x^2/2 + x^4/12
+    return m.Ms * m.Ms / m.chi * (x * std::atanh(x) + 0.5 * std::log1p(-x * x));
+}
 
 // M = f(H) and its Jacobian dM/dH.
 Vec3 response(const SoftMaterial& m, const Vec3& H, Mat3* J) {
@@ -75,12 +87,8 @@ public:
         if (!(tolerance_ > 0 && tolerance_ <= 1e-2)) d.fail("tolerance", "must be in (0, 0.01] (change of M per sweep relative to Ms)");
         maxIterations_ = d.get<int>("maxIterations", 200);
         if (maxIterations_ < 1) d.fail("maxIterations", "must be >= 1");
-        order_ = d.get<int>("order", 3);
-        if (order_ < 1 || order_ > 20) d.fail("order", "Gauss points per triangle side for the volume averages, 1..20");
-        tensorOrder_ = d.get<int>("tensorOrder", 8);
-        if (tensorOrder_ < 1 || tensorOrder_ > 20) d.fail("tensorOrder", "Gauss points per sub-triangle side, 1..20");
-        tensorSplit_ = d.get<int>("tensorSplit", 4);
-        if (tensorSplit_ < 1 || tensorSplit_ > 16) d.fail("tensorSplit", "sub-triangles per triangle side, 1..16");
+        tensorOrder_ = d.get<int>("tensorOrder", 20);
+        if (tensorOrder_ < 2 || tensorOrder_ > 32) d.fail("tensorOrder", "Gauss points per side of each fan piece for N, 2..32");
         mbm_ = FieldEvaluator::New(Dict::fromString("type: MBM\n", "demag: the bodies' own fields"));
     }
 
@@ -96,50 +104,53 @@ public:
 
         std::vector<SoftMaterial> mat(n);
         std::vector<Mat3> N(n);
-        std::vector<std::vector<Vec3>> points(n), normals(n);
         for (std::size_t a = 0; a < n; ++a) {
             const Body& b = bodies[soft[a]];
             mat[a] = material(b);
-            const Data& s = shapeData(b.shape);
             const Mat3 R = b.orientation.toRotationMatrix();
-            N[a] = R * s.N * R.transpose();
-            points[a].resize(s.rule.points.size()), normals[a].resize(s.rule.points.size());
-            for (std::size_t q = 0; q < s.rule.points.size(); ++q) {
-                points[a][q] = b.toWorld(s.rule.points[q]);
-                normals[a][q] = R * s.rule.weightedNormals[q];
-            }
+            N[a] = R * shapeData(b.shape).N * R.transpose();
         }
-        // Fixed sources: the applied field and every magnetized non-soft body.
-        std::vector<Vec3> fixedB(n, Vec3::Zero());
+        // What each soft body responds to: the field integral I = -dU/dM of
+        // every energy it takes part in, U as the forces see it. The applied
+        // field: its wrench energy (linear in M). A pair with another body:
+        // U = -M_t . K M_s from the evaluator in the orientation addWrenches()
+        // uses (FieldEvaluator::orientedPair; the target's samples), so the
+        // target responds to K M_s and the source to K^T M_t. Then M is
+        // stationary for exactly the energy the forces derive from.
+        std::vector<int> slot(bodies.size(), -1); // body -> soft index
+        for (std::size_t a = 0; a < n; ++a) slot[soft[a]] = static_cast<int>(a);
+        std::vector<Vec3> fixedB(n, Vec3::Zero());        // from the applied field and permanent bodies
+        std::vector<Mat3> C(n * n, Mat3::Zero());         // C[a n + b]: I at a per unit world M of b
+        auto unitMagnetized = [](Body b, int c) {
+            b.magnetizationBody = b.orientation.conjugate() * Vec3::Unit(c);
+            return b;
+        };
+        for (std::size_t a = 0; a < n; ++a) {
+            if (!applied.active()) break;
+            const Body& target = bodies[soft[a]];
+            for (int c = 0; c < 3; ++c) fixedB[a][c] -= applied.wrench(unitMagnetized(target, c)).ownEnergy;
+        }
+        const std::span<const Body> all(bodies);
+        for (std::size_t i = 0; i < bodies.size(); ++i)
+            for (std::size_t j = i + 1; j < bodies.size(); ++j) {
+                const BodyPair p = FieldEvaluator::orientedPair(all, i, j);
+                const Body &s = bodies[p.source], &t = bodies[p.target];
+                const int ss = slot[p.source], ts = slot[p.target];
+                if (ss < 0 && ts < 0) continue;
+                if (ss >= 0 && ts >= 0) { // two soft bodies: K from three unit source magnetizations
+                    Mat3 K;
+                    for (int c = 0; c < 3; ++c) K.col(c) = field.fieldIntegral(unitMagnetized(s, c), t);
+                    C[ts * n + ss] = K, C[ss * n + ts] = K.transpose();
+                } else if (ts >= 0) { // soft target, permanent source: K M_s in one call
+                    if (s.magnetizationBody.squaredNorm() > 0) fixedB[ts] += field.fieldIntegral(s, t);
+                } else if (t.magnetizationBody.squaredNorm() > 0) { // soft source: K^T M_t from three energies
+                    for (int c = 0; c < 3; ++c) fixedB[ss][c] -= field.interaction(unitMagnetized(s, c), t).energy;
+                }
+            }
         for (std::size_t a = 0; a < n; ++a) {
             const double V = bodies[soft[a]].shape->volume;
-            std::vector<Vec3> B(points[a].size(), Vec3::Zero()), A(points[a].size(), Vec3::Zero());
-            if (applied.active()) {
-                applied.add(points[a], B, A);
-                fixedB[a] += demag::volumeAverage(normals[a], A, V);
-            }
-            for (const Body& source : bodies) {
-                if (source.soft() || source.magnetizationBody.squaredNorm() == 0) continue;
-                field.evaluate(source, points[a], B, A);
-                fixedB[a] += demag::volumeAverage(normals[a], A, V);
-            }
-        }
-        // Soft-soft maps: C[a][b] = B-bar at a per unit world M of b.
-        std::vector<Mat3> C(n * n, Mat3::Zero());
-        for (std::size_t b = 0; b < n; ++b) {
-            Body unit = bodies[soft[b]];
-            const Mat3 toBody = unit.orientation.conjugate().toRotationMatrix();
-            for (std::size_t a = 0; a < n; ++a) {
-                if (a == b) continue;
-                std::vector<Vec3> B(points[a].size()), A(points[a].size());
-                Mat3 perUnitBody;
-                for (int c = 0; c < 3; ++c) {
-                    unit.magnetizationBody = Vec3::Unit(c);
-                    field.evaluate(unit, points[a], B, A);
-                    perUnitBody.col(c) = demag::volumeAverage(normals[a], A, bodies[soft[a]].shape->volume);
-                }
-                C[a * n + b] = perUnitBody * toBody;
-            }
+            fixedB[a] /= V;
+            for (std::size_t b = 0; b < n; ++b) C[a * n + b] /= V;
         }
 
         // Block Gauss-Seidel, from the magnetizations of the last call.
@@ -170,17 +181,33 @@ public:
         return report;
     }
 
+    // Every pair once (interaction energies at the converged M, as the forces
+    // see them), the applied field's, and each soft body's own energy
+    // mu0 V (g(M) + 1/2 M . N M), g the material's internal energy density
+    // (dg/dM = f^-1(M)): at the solution the total is the minimum over M of
+    // the energy the forces are the gradient of (docs/physics.md#energy). For a
+    // linear material this is the -1/2 m . B of the default.
+    double sceneEnergy(const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches) const override {
+        double e = 0;
+        for (std::size_t i = 0; i < wrenches.size(); ++i) e += 0.5 * wrenches[i].energy + wrenches[i].ownEnergy;
+        for (const Body& b : bodies) {
+            if (!b.soft()) continue;
+            const SoftMaterial m = material(b);
+            const Vec3& M = b.magnetizationBody;
+            e += mu0 * b.shape->volume * (internalEnergy(m, M.norm()) + 0.5 * M.dot(shapeData(b.shape).N * M));
+        }
+        return e;
+    }
+
     std::string describe() const override {
-        return fmt::format("demag (tolerance {:g}, maxIterations {}, volume averages {} x {} Gauss per triangle, "
-                           "N from the mesh: {} x {} sub-triangles x {} x {})",
-                           tolerance_, maxIterations_, order_, order_, tensorSplit_, tensorSplit_, tensorOrder_,
-                           tensorOrder_);
+        return fmt::format("demag (tolerance {:g}, maxIterations {}, fields averaged as the evaluator's energy sees "
+                           "them, N from the mesh: graded fan of order {} or fewer points on fine meshes)",
+                           tolerance_, maxIterations_, tensorOrder_);
     }
 
 private:
     struct Data {
         Mat3 N;
-        demag::SurfaceRule rule;
     };
 
     // M = f(h - N M) for one body: exact for a linear material; otherwise Newton
@@ -238,12 +265,14 @@ private:
         if (it == cache_.end()) {
             // Cost ~ points x triangles: fine meshes get fewer points per
             // triangle (their edges bend little, so A's log term is weak there):
-            // an icosphere of 5120 triangles at 2 x 2 points is 1.6e-6 off 1/3.
+            // the richest rule within the budget, the fan down to order 2, then
+            // the symmetric 7-, 6- and 3-point rules (an icosphere of 5120
+            // triangles: 3 points, 2.3e-6 off 1/3; of 1280: fan order 4, 1.5e-7).
             const double F = static_cast<double>(shape->mesh.triangles.size());
-            int split = tensorSplit_, order = tensorOrder_;
-            while (F * F * split * split * order * order > kTensorBudget && (split > 1 || order > 2))
-                split > 1 ? split /= 2 : --order;
-            Data d{demag::demagTensor(shape, *mbm_, order, split), demag::surfaceRule(shape->mesh, order_, 1)};
+            int order = tensorOrder_;
+            while (F * F * demag::tensorRulePoints(order) > kTensorBudget && order != -3)
+                order = order > 2 ? order - 1 : order == 2 ? -7 : order == -7 ? -6 : -3;
+            Data d{demag::demagTensor(shape, *mbm_, order)};
             it = cache_.emplace(shape.get(), std::make_pair(shape, std::move(d))).first;
         }
         return it->second.second;
@@ -252,7 +281,7 @@ private:
     // Points x triangles for N, ~5 s on one core.
     static constexpr double kTensorBudget = 1.2e8;
     double tolerance_ = 1e-8;
-    int maxIterations_ = 200, order_ = 3, tensorOrder_ = 8, tensorSplit_ = 4;
+    int maxIterations_ = 200, tensorOrder_ = 20;
     std::unique_ptr<FieldEvaluator> mbm_;
     mutable std::mutex mutex_;
     mutable std::map<const Shape*, std::pair<std::shared_ptr<const Shape>, Data>> cache_;
@@ -263,13 +292,12 @@ const TypeDoc kDoc{
     "Each soft body's uniform M solves M = f(H_applied + H_others - N M), N from the body's mesh,\n"
     "the fields averaged over its volume (boundary integral of n x A), so the induced wrench\n"
     "conserves energy. Materials: {model: soft, chi (or mur), Js, density[, saturation: false]}.",
-    {"type: demag\ntolerance: 1e-8\nmaxIterations: 200\norder: 3\ntensorOrder: 8\ntensorSplit: 4\n"},
+    {"type: demag\ntolerance: 1e-8\nmaxIterations: 200\ntensorOrder: 20\n"},
     {{"tolerance", "-", "converged when no magnetization changed by more than tolerance * Ms in a sweep, (0, 0.01]"},
      {"maxIterations", "-", "Gauss-Seidel sweeps over the soft bodies before a step is reported unconverged"},
-     {"order", "-", "Gauss points per triangle side of the volume averages of the other bodies' fields, 1..20"},
-     {"tensorOrder", "-", "Gauss points per sub-triangle side for N (once per shape), 1..20; lowered (to 2)\n"
-                          "with tensorSplit for meshes of many triangles (cost ~ points x triangles)"},
-     {"tensorSplit", "-", "sub-triangles per triangle side for N (edges: A's gradient is log-singular), 1..16"}}};
+     {"tensorOrder", "-", "Gauss points per side of each of a triangle's three graded fan pieces for N (once\n"
+                          "per shape), 2..32; lowered for meshes of many triangles (cost ~ points x triangles),\n"
+                          "down to a symmetric 3-point rule"}}};
 
 const InductionModel::Add<DemagInduction> addDemag("demag", kDoc);
 

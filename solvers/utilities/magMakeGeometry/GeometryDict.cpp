@@ -6,6 +6,7 @@
 
 #include <magFoam/Error.hpp>
 #include <magFoam/MeshIO.hpp>
+#include <magFoam/MeshPrimitives.hpp>
 #include <magFoam/MeshTopology.hpp>
 
 #include <algorithm>
@@ -121,6 +122,16 @@ PartBuild readRod(const Dict& e) {
     return {[=] { return std::vector{makeRod(radius, length, segments)}; }};
 }
 
+// An ellipsoid (a soft needle or a ball): the icosphere scaled per axis,
+// 20 4^subdivisions triangles.
+PartBuild readEllipsoid(const Dict& e) {
+    const Vec3 semiAxes = e.get<Vec3>("semiAxes", Vec3(0.005, 0.0005, 0.0005));
+    if (!(semiAxes.minCoeff() > 0)) e.fail("semiAxes", "three semi-axes > 0 (m)");
+    const int subdivisions = e.get<int>("subdivisions", 4);
+    if (subdivisions < 0 || subdivisions > 6) e.fail("subdivisions", "0..6 (20 4^subdivisions triangles)");
+    return {[=] { return std::vector{makeEllipsoid(semiAxes, subdivisions)}; }};
+}
+
 PartBuild readBarMagnet(const Dict& e) {
     const Vec3 size = e.get<Vec3>("size", Vec3(0.05, 0.01, 0.01));
     return {[=] { return std::vector{makeBarMagnet(size)}; }};
@@ -153,7 +164,8 @@ using PartReader = PartBuild (*)(const Dict&);
 const std::map<std::string, PartReader>& partTypes() {
     static const std::map<std::string, PartReader> types = {
         {"barMagnet", readBarMagnet}, {"bentPlate", readBentPlate}, {"binderClip", readBinderClip},
-        {"craneDisc", readCraneDisc}, {"hexNut", readHexNut},       {"paperclip", readPaperclip},
+        {"craneDisc", readCraneDisc}, {"ellipsoid", readEllipsoid}, {"hexNut", readHexNut},
+        {"paperclip", readPaperclip},
         {"rod", readRod},             {"tube", readTube},           {"washer", readWasher},
     };
     return types;

@@ -43,6 +43,8 @@
 //               sharp corner, legs to the corner, angle <= 150) bendSegments [6] (per 90 degrees)
 //   rod         radius [0.003] length [0.05] segments [24]; axis x (96 triangles)
 //   barMagnet   size [[0.05, 0.01, 0.01]] (12 triangles)
+//   ellipsoid   semiAxes [[0.005, 0.0005, 0.0005]] subdivisions [4] (0..6);
+//               semi-axes along x, y, z (20 4^subdivisions triangles)
 //   craneDisc   radius [0.15] height [0.05] (overall) rimWidth [0.015] rimDepth [0.01]
 //               (0: a plain disc) segments [64]; axis z, rim below (512 triangles)
 //   tube        a wire along a polyline: path (required, list of [x, y, z])
@@ -83,7 +85,7 @@ int main(int argc, char** argv) {
     std::string types;
     for (const auto& t : shapeTypes()) types += (types.empty() ? "" : ", ") + t;
     ArgList args("magMakeGeometry",
-                 "Writes meshes of paperclips, binder clips, nuts, washers, brackets, rods and magnets "
+                 "Writes meshes of paperclips, binder clips, nuts, washers, brackets, rods, ellipsoids and magnets "
                  "(system/geometryDict.yaml) to constant/geometry/<name>.stl.\n"
                  "Part types: " + types + ".\n"
                  "Their keys and defaults: docs/case-reference.md#geometrydict.");
