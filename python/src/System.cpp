@@ -276,7 +276,7 @@ double System::energy() {
     py::gil_scoped_release release;
     std::lock_guard lock(mutex_);
     const std::vector<Wrench> w = evaluate();
-    return sceneMagneticEnergy(w, [&](std::size_t i) { return bodies_[i].soft(); });
+    return system_->magneticEnergy(bodies_, w);
 }
 
 py::tuple System::sweep(const std::string& name, const py::object& positions, const py::object& quaternions) {

@@ -45,7 +45,7 @@ public:
     py::tuple wrench(const std::string& name);
     py::dict wrenches();
     py::tuple sweep(const std::string& name, const py::object& positions, const py::object& quaternions);
-    // The scene's magnetic energy, J (sceneMagneticEnergy).
+    // The scene's magnetic energy, J (MagneticSystem::magneticEnergy: soft bodies as the induction model counts them).
     double energy();
 
     // B (T) at points of shape (..., 3), and A (T m), H (A/m) when asked.
