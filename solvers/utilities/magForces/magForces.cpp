@@ -22,6 +22,7 @@
 #include <magFoam/BodyOverlap.hpp>
 #include <magFoam/Case.hpp>
 #include <magFoam/Error.hpp>
+#include <magFoam/InputFile.hpp>
 #include <magFoam/Log.hpp>
 #include <magFoam/MagneticSystem.hpp>
 #include <magFoam/Threads.hpp>
@@ -75,8 +76,8 @@ Sweep readSweep(const Case& c, const Dict& dict) {
     const Dict r = s.rotate ? d.sub("rotate") : d;
     const std::string dirKey = s.rotate ? "axis" : "direction";
     s.direction = r.get<Vec3>(dirKey);
-    if (s.direction.norm() == 0) r.fail(dirKey, "sweep " + dirKey + " has zero length");
-    s.direction.normalize();
+    if (!(s.direction.stableNorm() > 0)) r.fail(dirKey, "sweep " + dirKey + " has zero length");
+    s.direction.stableNormalize();
     readRange(r, s);
     r.reportUnused();
     d.reportUnused();
@@ -114,7 +115,7 @@ int run(const ArgList& args) {
                  "their forces follow the overlap model (docs/physics.md#overlap-models), not a contact");
     const auto forcesFile = c.dir() / "system/forcesDict.yaml";
     std::optional<Sweep> sweep;
-    if (std::filesystem::exists(forcesFile)) sweep = readSweep(c, Dict::fromFile(forcesFile));
+    if (inputPresent(forcesFile)) sweep = readSweep(c, Dict::fromFile(forcesFile));
 
     std::filesystem::create_directories(c.dir() / "postProcessing");
     const auto csvPath = c.dir() / "postProcessing/forces.csv";
