@@ -143,6 +143,11 @@ TEST_CASE("an alias bomb is refused quickly, also inside an unknown key", "[dict
     CHECK(d.get<std::vector<double>>("copy").size() == 3);
 }
 
+TEST_CASE("nesting deeper than the parser's limit is an error, not a stack overflow", "[dictionary][badInput]") {
+    CHECK_THAT(inputErrorOf([&] { (void)Dict::fromFile(badDictionary("deepNesting.yaml")); }),
+               Contains("deepNesting.yaml:") && Contains("nested more than 499 levels deep"));
+}
+
 TEST_CASE("a second YAML document is an error naming its line", "[dictionary][badInput]") {
     CHECK_THAT(inputErrorOf([&] { (void)Dict::fromFile(badDictionary("twoDocuments.yaml")); }),
                Contains("twoDocuments.yaml:2:") && Contains("a second YAML document"));

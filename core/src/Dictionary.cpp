@@ -4,6 +4,7 @@
 #include "magFoam/InputFile.hpp"
 #include "magFoam/Log.hpp"
 
+#include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/parser.h>
 
@@ -199,12 +200,16 @@ Dict Dict::fromString(const std::string& text, const std::string& name) { return
 Dict Dict::recording(const std::string& text, const std::string& name, std::shared_ptr<KeyLog> log) {
     YAML::Node root;
     try {
+        // The events first (documents, alias expansion), then the tree.
         std::istringstream in(text);
         YAML::Parser parser(in);
         YamlBudget budget(name);
         while (parser.HandleNextDocument(budget)) {
         }
         root = YAML::Load(text);
+    } catch (const YAML::DeepRecursion& e) {
+        throw InputError(markText(name, e.mark) + ": lists or mappings nested more than " +
+                         std::to_string(e.depth() - 1) + " levels deep");
     } catch (const YAML::Exception& e) {
         throw InputError(markText(name, e.mark) + ": malformed YAML: " + e.msg);
     }

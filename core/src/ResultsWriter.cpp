@@ -60,10 +60,11 @@ Quat exactOrientation(const Dict& b) {
 
 // Nothing non-finite is ever written: a state or result holding NaN or inf
 // is refused before the first byte, naming the body and the quantity.
-void requireFinite(double time, const std::vector<Body>& bodies, const std::vector<Wrench>* wrenches,
+void requireFinite(double time, long step, const std::vector<Body>& bodies, const std::vector<Wrench>* wrenches,
                    const Energies* energies) {
     auto fail = [&](const std::string& what) {
-        throw StateError("not written: " + what + " at t = " + formatExact(time) + " s is not finite");
+        throw StateError("not written: " + what + " at t = " + formatExact(time) + " s (step " +
+                         std::to_string(step) + ") is not finite");
     };
     if (!std::isfinite(time)) fail("the time");
     for (std::size_t i = 0; i < bodies.size(); ++i) {
@@ -187,7 +188,7 @@ void ResultsWriter::writeInduction(double time, long step, const InductionReport
 void ResultsWriter::write(double time, long step, const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches,
                           const Energies& e, const std::vector<StateFile>& states,
                           const std::vector<std::vector<Vec3>>& faceB) {
-    requireFinite(time, bodies, &wrenches, &e);
+    requireFinite(time, step, bodies, &wrenches, &e);
     char line[1024];
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         const Body& b = bodies[i];
@@ -221,7 +222,7 @@ std::vector<Vec3> faceCentres(const Body& body) {
 
 void ResultsWriter::writeState(double time, long step, const std::vector<Body>& bodies,
                                const std::vector<StateFile>& states) const {
-    requireFinite(time, bodies, nullptr, nullptr);
+    requireFinite(time, step, bodies, nullptr, nullptr);
     const auto folder = dir_ / timeName(time);
     std::filesystem::create_directories(folder);
     // Write then rename: an interrupted write never leaves a broken state.
