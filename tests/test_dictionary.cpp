@@ -1,8 +1,16 @@
 // Dict: typed reads, defaults, and the error messages users see for bad input.
 #include <magFoam/Dictionary.hpp>
 #include <magFoam/Error.hpp>
+#include <magFoam/InputFile.hpp>
 
 #include <catch2/catch.hpp>
+
+#include <sys/stat.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <functional>
 
 using mag::Dict;
 using mag::InputError;
@@ -82,4 +90,107 @@ TEST_CASE("enumerated words list the valid values", "[dictionary][badInput]") {
 TEST_CASE("missing dictionary file", "[dictionary][badInput]") {
     CHECK_THROWS_WITH(Dict::fromFile("no/such/dir/controlDict.yaml"),
                       Contains("no/such/dir/controlDict.yaml") && Contains("not found"));
+}
+
+// ---------------------------------------------------------------------------
+// What the reader refuses before anything walks the tree (tests/badDictionaries).
+
+namespace {
+
+std::filesystem::path badDictionary(const std::string& name) {
+    return std::filesystem::path(MAG_SOURCE_DIR) / "tests/badDictionaries" / name;
+}
+
+std::string inputErrorOf(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "(no InputError)";
+}
+
+// A scratch folder for files that cannot live in the repository (FIFO, links).
+struct ScratchDir {
+    std::filesystem::path path;
+    ScratchDir() {
+        path = std::filesystem::temp_directory_path() /
+               ("magFoam-dict-" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
+        std::filesystem::create_directories(path);
+    }
+    ~ScratchDir() {
+        std::error_code ec;
+        std::filesystem::remove_all(path, ec);
+    }
+};
+
+} // namespace
+
+TEST_CASE("an alias bomb is refused quickly, also inside an unknown key", "[dictionary][badInput]") {
+    for (const std::string name : {"aliasBomb.yaml", "aliasBombInUnknownKey.yaml"}) {
+        INFO(name);
+        const auto start = std::chrono::steady_clock::now();
+        const std::string message = inputErrorOf([&] { (void)Dict::fromFile(badDictionary(name)); });
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        CHECK_THAT(message, Contains(name + ":") && Contains("expands to more than 1000000 values"));
+        CHECK(seconds < 2.0);
+    }
+    // An alias inside its own anchor would be an endless tree.
+    CHECK_THAT(inputErrorOf([&] { (void)Dict::fromFile(badDictionary("aliasCycle.yaml")); }),
+               Contains("aliasCycle.yaml:1:") && Contains("alias *a refers to a node that contains it"));
+    // Aliases as such are fine, and count as what they stand for.
+    const Dict d = Dict::fromString("base: &b [1, 2, 3]\ncopy: *b\n", "ok.yaml");
+    CHECK(d.get<std::vector<double>>("copy").size() == 3);
+}
+
+TEST_CASE("nesting deeper than the parser's limit is an error, not a stack overflow", "[dictionary][badInput]") {
+    CHECK_THAT(inputErrorOf([&] { (void)Dict::fromFile(badDictionary("deepNesting.yaml")); }),
+               Contains("deepNesting.yaml:") && Contains("nested more than 499 levels deep"));
+}
+
+TEST_CASE("a second YAML document is an error naming its line", "[dictionary][badInput]") {
+    CHECK_THAT(inputErrorOf([&] { (void)Dict::fromFile(badDictionary("twoDocuments.yaml")); }),
+               Contains("twoDocuments.yaml:2:") && Contains("a second YAML document"));
+    // A document end marker alone is one document.
+    CHECK_NOTHROW(Dict::fromString("---\na: 1\n...\n", "one.yaml"));
+}
+
+TEST_CASE("numbers above 1e30 in magnitude are refused, naming the key", "[dictionary][badInput]") {
+    const Dict d = Dict::fromFile(badDictionary("hugeNumber.yaml"));
+    CHECK_THROWS_WITH(d.get<double>("Br"), Contains("hugeNumber.yaml:1:") && Contains("Br: expected a finite number "
+                                                                                      "of magnitude at most 1e30"));
+    CHECK_THROWS_WITH(d.get<mag::Vec3>("position"), Contains("hugeNumber.yaml:2:") && Contains("position"));
+    CHECK_THROWS_WITH((d.get<std::vector<std::vector<double>>>("rows")), Contains("rows") && Contains("1e30"));
+    CHECK_THROWS_WITH(d.get<mag::Quat>("q"), Contains("q: expected a quaternion") && Contains("1e30"));
+    CHECK(Dict::fromString("x: -1e30\n", "ok.yaml").get<double>("x") == -1e30);
+}
+
+TEST_CASE("non-regular files, dangling links and files above the size limit are refused", "[dictionary][badInput]") {
+    namespace fs = std::filesystem;
+    const ScratchDir dir;
+    const fs::path fifo = dir.path / "controlDict.yaml";
+    REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+    // Returns at once (a FIFO would block a reader forever), naming the file.
+    CHECK_THAT(inputErrorOf([&] { (void)Dict::fromFile(fifo); }),
+               Contains(fifo.string() + ": is a FIFO (named pipe), expected a regular dictionary"));
+
+    const fs::path zero = dir.path / "bodies.yaml";
+    fs::create_symlink("/dev/zero", zero);
+    CHECK_THAT(inputErrorOf([&] { (void)Dict::fromFile(zero); }),
+               Contains(zero.string() + ": is a character device, expected a regular dictionary"));
+
+    const fs::path dangling = dir.path / "forcesDict.yaml";
+    fs::create_symlink(dir.path / "missing.yaml", dangling);
+    CHECK_THAT(inputErrorOf([&] { (void)Dict::fromFile(dangling); }),
+               Contains(dangling.string() + ": file not found (a link to a missing file)"));
+    CHECK(mag::inputPresent(dangling));
+    CHECK_FALSE(mag::inputPresent(dir.path / "missing.yaml"));
+
+    const fs::path big = dir.path / "materials.yaml";
+    { std::ofstream(big) << "a: 1\n"; }
+    fs::resize_file(big, mag::dictionaryFileLimit + 1);  // sparse: no disk used
+    CHECK_THAT(inputErrorOf([&] { (void)Dict::fromFile(big); }),
+               Contains(big.string() + ": dictionary of 67108865 bytes is above the limit of 67108864 bytes"));
+
+    CHECK_THAT(inputErrorOf([&] { (void)Dict::fromFile(dir.path / "none.yaml"); }), Contains("none.yaml: file not found"));
 }

@@ -657,3 +657,60 @@ TEST_CASE("closest point on a triangle: face, edge and vertex regions", "[mesh]"
     CHECK(near(mag::Vec3(3, -1, 0), b));                           // vertex b
     CHECK(near(mag::Vec3(-1, 4, 2), c));                           // vertex c
 }
+
+// ---------------------------------------------------------------------------
+// Malformed mesh files (tests/badMeshes): an InputError naming the file and the
+// line or element, never a crash, a hang or a mesh with bad indices.
+
+namespace {
+
+fs::path badMesh(const std::string& name) { return fs::path(MAG_SOURCE_DIR) / "tests/badMeshes" / name; }
+
+} // namespace
+
+TEST_CASE("binary PLY with float, double and big-endian coordinates loads", "[mesh][io]") {
+    for (const std::string name : {"goodBinaryFloat.ply", "goodBinaryDouble.ply", "goodBinaryBigEndian.ply"}) {
+        INFO(name);
+        const SurfaceMesh tet = loadSurfaceMesh(badMesh(name));
+        CHECK(tet.nTriangles() == 4);
+        CHECK(tet.nVertices() == 4);
+        REQUIRE_NOTHROW(requireUsable(tet));
+        CHECK(computeMassProperties(tet).volume == Approx(4.0).epsilon(1e-14));
+    }
+}
+
+TEST_CASE("malformed PLY, OFF, STL and OBJ files are errors naming file and element", "[mesh][io][bad]") {
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"faceIndexMinus1.ply", ":17: face 2: vertex index -1 is out of range; the file has 4 vertices"},
+        {"faceIndexMinus5.ply", ": face 1 (at byte 257): vertex index -5 is out of range"},
+        {"faceIndexHuge.ply", ":18: face 3: vertex index 2147483647 is out of range"},
+        // The header says binary, the data is text: its bytes make no sense as numbers.
+        {"binaryHeaderAsciiData.ply", ": face 0 (at byte 244): list 'vertex_indices' counts 51 items, but the rest "
+                                      "of the file holds at most 1 (truncated, or not binary data)"},
+        {"truncatedBinary.ply", ": face 3 (at byte 283): list 'vertex_indices' counts 3 items, but the rest of the "
+                                "file holds at most 1 (truncated"},
+        {"endHeder.ply", ":10: PLY header: unknown header line 'end_heder'"},
+        {"hugeVertexCount.ply", ":4: PLY header: element 'vertex' counts 2000000000 items, more than the 56 bytes"},
+        {"infCoordinate.ply", ":14: vertex 3: coordinate z = inf, expected a finite number"},
+        {"moreVerticesThanData.off", ":2: the header counts 12 vertices and 6 faces, more than the 109 bytes"},
+        {"moreFacesThanData.off", ":2: the header counts 8 vertices and 9 faces, more than the 109 bytes"},
+        {"oneFaceMissing.off", ":17: the file ends at face 6; the header counts 7 faces"},
+        {"oneFaceMissing.ply", ":17: face 3: the file ends here; the header counts 4 face items"},
+        {"faceIndexOutOfRange.off", ":15: face 4: vertex index 8 is out of range; the file has 8 vertices"},
+        {"nanCoordinate.stl", ": mesh 0 vertex 2 at (0, nan, 0): expected finite coordinates"},
+        {"faceIndexOutOfRange.obj", "vertex index out of range"},
+    };
+    for (const auto& [name, expected] : cases) {
+        INFO(name);
+        const std::string message = inputErrorOf([&] { (void)loadSurfaceMesh(badMesh(name)); });
+        CHECK(contains(message, badMesh(name).string()));
+        CHECK(contains(message, expected));
+    }
+}
+
+TEST_CASE("mesh files that are not regular files are refused", "[mesh][io][bad]") {
+    const TempFile link(".stl");
+    fs::create_symlink("/dev/zero", link.path);
+    CHECK(contains(inputErrorOf([&] { (void)loadSurfaceMesh(link.path); }),
+                   link.path.string() + ": is a character device, expected a regular mesh file"));
+}

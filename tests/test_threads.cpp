@@ -143,6 +143,10 @@ TEST_CASE("one thread by default; setThreads: 0 is all cores; parallelFor visits
     RestoreThreads restore;
     CHECK(mag::setThreads(0) == mag::availableCores());
     CHECK(mag::setThreads(3) == 3);
+    // More than the machine can start is capped (controlDict threads: 100000 crashed in OpenMP).
+    CHECK(mag::setThreads(100000) == mag::maxThreads());
+    CHECK(mag::maxThreads() >= mag::availableCores());
+    CHECK(mag::setThreads(3) == 3);
     std::vector<std::atomic<int>> seen(100);
     mag::parallelFor(seen.size(), [&](std::size_t i) { seen[i] += 1; });
     for (const auto& s : seen) CHECK(s == 1);

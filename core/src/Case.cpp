@@ -1,10 +1,12 @@
 #include "magFoam/Case.hpp"
 
 #include "magFoam/Error.hpp"
+#include "magFoam/InputFile.hpp"
 #include "magFoam/Log.hpp"
 #include "magFoam/Plugins.hpp"
 #include "magFoam/ShapeFactory.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <set>
 
@@ -13,7 +15,7 @@ namespace mag {
 namespace {
 
 std::optional<Dict> readOptional(const std::filesystem::path& file) {
-    if (!std::filesystem::exists(file)) return std::nullopt;
+    if (!inputPresent(file)) return std::nullopt;
     return Dict::fromFile(file);
 }
 
@@ -30,7 +32,7 @@ Quat readOrientation(const Dict& body) {
     } else {
         const Vec3 axis = o.get<Vec3>("axis");
         const double angle = o.get<double>("angle");  // degrees
-        if (axis.norm() < 1e-300) o.fail("axis", "rotation axis has zero length");
+        if (!(axis.stableNorm() > 0)) o.fail("axis", "rotation axis has zero length");
         // A non-integer angle within 0.1 % of a multiple of pi/12 (15 deg in
         // radians) up to 2 pi was almost certainly meant in radians.
         const double k = angle / (pi / 12);
@@ -38,7 +40,8 @@ Quat readOrientation(const Dict& body) {
             std::abs(k - std::round(k)) < 1e-3 * std::abs(k))
             o.warn("angle", fmt::format("{:g} looks like radians ({:g} rad = {:g} deg); angles here are in degrees",
                                         angle, angle, angle * 180 / pi));
-        q = Quat(Eigen::AngleAxisd(angle * pi / 180.0, axis.normalized()));
+        // fmod is exact: a large angle turns as much as its remainder does.
+        q = Quat(Eigen::AngleAxisd(std::fmod(angle, 360.0) * pi / 180.0, axis.stableNormalized()));
     }
     o.reportUnused();
     return q;
@@ -46,10 +49,28 @@ Quat readOrientation(const Dict& body) {
 
 } // namespace
 
+std::string bodyNameProblem(const std::string& name) {
+    if (name.empty()) return "a body name must not be empty";
+    if (name.size() > bodyNameLimit)
+        return fmt::format("body name of {} characters; at most {}", name.size(), bodyNameLimit);
+    for (const char c : name) {
+        const auto u = static_cast<unsigned char>(c);
+        if (std::isalnum(u) || c == '_' || c == '-' || c == '.') continue;
+        const std::string shown = std::isprint(u) ? fmt::format("'{}'", c) : fmt::format("character {}", int(u));
+        std::string printable;
+        for (const char k : name) printable += std::isprint(static_cast<unsigned char>(k)) ? k : '?';
+        return fmt::format("body name '{}' has {}: a name is a word of letters, digits and _ - . (it appears "
+                           "unquoted in the CSV files and the restart state)",
+                           printable, shown);
+    }
+    return {};
+}
+
 Body readBody(const Dict& b, const std::map<std::string, Material>& materials, const std::filesystem::path& caseDir,
               ShapeCache& shapes, std::shared_ptr<const Shape> shape) {
     Body body;
     body.name = b.get<std::string>("name");
+    if (const std::string why = bodyNameProblem(body.name); !why.empty()) b.fail("name", why);
 
     const std::string matName = b.get<std::string>("material");
     auto mat = materials.find(matName);
@@ -69,9 +90,10 @@ Body readBody(const Dict& b, const std::map<std::string, Material>& materials, c
                                         "' is soft)");
     } else {
         const Vec3 dir = b.get<Vec3>("magnetization");
-        if (dir.norm() < 1e-12 && body.material.Br > 0)
+        const double length = dir.stableNorm();
+        if (length < 1e-12 && body.material.Br > 0)
             b.fail("magnetization", "magnetization direction has zero length");
-        body.magnetizationBody = dir.norm() > 0 ? Vec3(dir.normalized() * body.material.Br / mu0) : Vec3::Zero();
+        body.magnetizationBody = length > 0 ? Vec3(dir.stableNormalized() * body.material.Br / mu0) : Vec3::Zero();
     }
 
     body.position = b.get<Vec3>("position");
@@ -101,6 +123,7 @@ std::vector<Body> readBodies(const Dict& dict, const std::map<std::string, Mater
     std::set<std::string> names;
     for (const Dict& b : dict.list("bodies")) {
         const std::string name = b.get<std::string>("name");
+        if (const std::string why = bodyNameProblem(name); !why.empty()) b.fail("name", why);
         if (!names.insert(name).second) b.fail("name", "duplicate body name '" + name + "'");
         bodies.push_back(readBody(b, materials, caseDir, shapes));
     }

@@ -1,6 +1,45 @@
 #include "magFoam/ControlDict.hpp"
 
+#include "magFoam/Log.hpp"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+
 namespace mag {
+
+namespace {
+
+std::string g(double x) { return fmt::format("{:.6g}", x); }
+
+// The times of a run must be distinct and exactly reachable: at most
+// maxSteps steps of deltaT to the largest time (so t + deltaT != t and the
+// step counts fit), and with fixed steps a whole number of them from
+// startTime to endTime (otherwise the last step would end before or after
+// endTime).
+void checkTimeAxis(const Dict& d, const ControlDict& c) {
+    const double reach = std::max(std::abs(c.startTime), std::abs(c.endTime));
+    if (reach / c.deltaT > ControlDict::maxSteps) {
+        const std::string key = std::abs(c.endTime) >= std::abs(c.startTime) ? "endTime" : "startTime";
+        d.fail(key, fmt::format("a time of {} s is {} steps of deltaT {} s; at most 1e12 steps of deltaT from time "
+                                "0 keep every step's time exact", g(reach), g(reach / c.deltaT), g(c.deltaT)));
+    }
+    if (c.adjustTimeStep) return;  // adaptive steps end on endTime exactly
+    const double steps = (c.endTime - c.startTime) / c.deltaT;
+    const double n = std::round(steps);
+    // The rounding of the times themselves: a few ulp of the largest, in steps.
+    if (std::abs(steps - n) <= 1e-6 + 4 * DBL_EPSILON * reach / c.deltaT) return;
+    const double down = std::floor(steps), up = std::ceil(steps), span = c.endTime - c.startTime;
+    std::string options = "deltaT " + g(span / up) + " (" + g(up) + " steps)";
+    if (down >= 1) options = "deltaT " + g(span / down) + " (" + g(down) + " steps) or " + options;
+    d.fail("deltaT", fmt::format("deltaT {} s does not divide the run from startTime {} s to endTime {} s ({} "
+                                 "steps): fixed steps would not end on endTime. Use {}, an endTime of {} or {} s, "
+                                 "or adjustTimeStep: true",
+                                 g(c.deltaT), g(c.startTime), g(c.endTime), fmt::format("{:.9g}", steps), options,
+                                 g(c.startTime + std::max(down, 1.0) * c.deltaT), g(c.startTime + up * c.deltaT)));
+}
+
+} // namespace
 
 ControlDict ControlDict::read(const Dict& d) {
     ControlDict c;
@@ -25,6 +64,7 @@ ControlDict ControlDict::read(const Dict& d) {
     if (c.writeInterval <= 0) d.fail("writeInterval", "write interval must be positive (simulated seconds)");
     if (c.threads < 0) d.fail("threads", "threads must be >= 0 (0 = all cores)");
     c.adjustTimeStep = d.get<bool>("adjustTimeStep", false);
+    checkTimeAxis(d, c);
     c.maxDeltaT = d.get<double>("maxDeltaT", 100.0 * c.deltaT);
     c.minDeltaT = d.get<double>("minDeltaT", 1e-3 * c.deltaT);
     if (!(c.minDeltaT > 0)) d.fail("minDeltaT", "must be > 0 (seconds)");

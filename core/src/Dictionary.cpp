@@ -1,7 +1,12 @@
 #include "magFoam/Dictionary.hpp"
 
 #include "magFoam/Error.hpp"
+#include "magFoam/InputFile.hpp"
 #include "magFoam/Log.hpp"
+
+#include <yaml-cpp/depthguard.h>
+#include <yaml-cpp/eventhandler.h>
+#include <yaml-cpp/parser.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -67,6 +72,97 @@ void rejectDuplicateKeys(const YAML::Node& node, const std::string& file) {
     }
 }
 
+// Walks the parser's events before yaml-cpp builds nodes, to refuse what the
+// node tree would make unbounded: an alias stands for its whole anchored node,
+// so 10 levels of `&a [*a, *a, ...]` are billions of nodes to every later walk
+// (or a cycle, when the alias sits inside its own anchor). Counts the nodes as
+// they would be with every alias expanded, and the documents.
+class YamlBudget : public YAML::EventHandler {
+public:
+    static constexpr std::size_t nodeLimit = 1'000'000;
+
+    explicit YamlBudget(const std::string& file) : file_(file) {}
+
+    void OnDocumentStart(const YAML::Mark& mark) override {
+        if (++documents_ > 1)
+            throw InputError(markText(file_, mark) +
+                             ": a second YAML document ('---'); a dictionary is one document");
+        sizes_.assign(1, 0);  // anchor ids count from 1 in each document
+    }
+    void OnDocumentEnd() override {}
+    void OnAnchor(const YAML::Mark&, const std::string& name) override { anchorName_ = name; }
+    void OnNull(const YAML::Mark& mark, YAML::anchor_t anchor) override { leaf(mark, anchor); }
+    void OnScalar(const YAML::Mark& mark, const std::string&, YAML::anchor_t anchor, const std::string&) override {
+        leaf(mark, anchor);
+    }
+    void OnAlias(const YAML::Mark& mark, YAML::anchor_t anchor) override {
+        if (anchor >= sizes_.size() || sizes_[anchor] == 0) {
+            const auto open = std::find_if(open_.begin(), open_.end(), [&](const Open& o) { return o.anchor == anchor; });
+            throw InputError(markText(file_, mark) + ": alias *" + (open != open_.end() ? open->name : "?") +
+                             " refers to a node that contains it (an endless cycle)");
+        }
+        add(mark, sizes_[anchor]);
+    }
+    void OnSequenceStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t anchor,
+                         YAML::EmitterStyle::value) override {
+        start(mark, anchor);
+    }
+    void OnSequenceEnd() override { end(); }
+    void OnMapStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t anchor,
+                    YAML::EmitterStyle::value) override {
+        start(mark, anchor);
+    }
+    void OnMapEnd() override { end(); }
+
+private:
+    struct Open {
+        YAML::anchor_t anchor;
+        std::string name;
+        std::size_t nodes;  // this collection and everything in it so far
+    };
+    void anchorSize(YAML::anchor_t anchor, std::size_t nodes) {
+        if (anchor == YAML::NullAnchor) return;
+        if (sizes_.size() <= anchor) sizes_.resize(anchor + 1, 0);
+        sizes_[anchor] = nodes;
+    }
+    void add(const YAML::Mark& mark, std::size_t nodes) {
+        // Both terms are at most nodeLimit: no overflow.
+        total_ += nodes;
+        if (!open_.empty()) open_.back().nodes += nodes;
+        if (total_ > nodeLimit)
+            throw InputError(markText(file_, mark) + ": the dictionary expands to more than " +
+                             std::to_string(nodeLimit) + " values (aliases '*name' repeat their anchored node)");
+    }
+    void leaf(const YAML::Mark& mark, YAML::anchor_t anchor) {
+        anchorSize(anchor, 1);
+        anchorName_.clear();
+        add(mark, 1);
+    }
+    void start(const YAML::Mark& mark, YAML::anchor_t anchor) {
+        add(mark, 1);
+        open_.push_back({anchor, anchorName_, 1});
+        anchorName_.clear();
+        if (anchor != YAML::NullAnchor) anchorSize(anchor, 0);  // 0: still open
+    }
+    void end() {
+        const Open done = open_.back();
+        open_.pop_back();
+        anchorSize(done.anchor, done.nodes);
+        if (!open_.empty()) open_.back().nodes += done.nodes - 1;  // the 1 was added at start
+    }
+
+    const std::string& file_;
+    int documents_ = 0;
+    std::size_t total_ = 0;
+    std::vector<std::size_t> sizes_;
+    std::vector<Open> open_;
+    std::string anchorName_;
+};
+
+// Every number of a dictionary (dictionaryNumberLimit, Dictionary.hpp).
+bool inRange(double x) { return std::isfinite(x) && std::abs(x) <= dictionaryNumberLimit; }
+const std::string rangeText = " of magnitude at most 1e30";
+
 bool parseDouble(const YAML::Node& n, double& out) {
     if (!n.IsScalar()) return false;
     const std::string& s = n.Scalar();
@@ -96,11 +192,7 @@ Dict::Dict(std::shared_ptr<const FileState> state, YAML::Node node, std::string 
       asked_(std::make_shared<std::set<std::string>>()) {}
 
 Dict Dict::fromFile(const std::filesystem::path& file) {
-    std::ifstream in(file);
-    if (!in) throw InputError(file.string() + ": cannot open dictionary (file not found or unreadable)");
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return fromString(ss.str(), file.string());
+    return fromString(readInputFile(file, dictionaryFileLimit, "dictionary"), file.string());
 }
 
 Dict Dict::fromString(const std::string& text, const std::string& name) { return recording(text, name, nullptr); }
@@ -108,7 +200,16 @@ Dict Dict::fromString(const std::string& text, const std::string& name) { return
 Dict Dict::recording(const std::string& text, const std::string& name, std::shared_ptr<KeyLog> log) {
     YAML::Node root;
     try {
+        // The events first (documents, alias expansion), then the tree.
+        std::istringstream in(text);
+        YAML::Parser parser(in);
+        YamlBudget budget(name);
+        while (parser.HandleNextDocument(budget)) {
+        }
         root = YAML::Load(text);
+    } catch (const YAML::DeepRecursion& e) {
+        throw InputError(markText(name, e.mark) + ": lists or mappings nested more than " +
+                         std::to_string(e.depth() - 1) + " levels deep");
     } catch (const YAML::Exception& e) {
         throw InputError(markText(name, e.mark) + ": malformed YAML: " + e.msg);
     }
@@ -284,7 +385,7 @@ template <> struct DictConvert<double> {
     static double from(const Dict& d, const std::string& key, const YAML::Node& n) {
         double x;
         if (!parseDouble(n, x)) d.fail(key, "expected a number, got " + shortText(n));
-        if (!std::isfinite(x)) d.fail(key, "expected a finite number, got " + shortText(n));
+        if (!inRange(x)) d.fail(key, "expected a finite number" + rangeText + ", got " + shortText(n));
         return x;
     }
 };
@@ -323,8 +424,8 @@ template <> struct DictConvert<std::vector<double>> {
         std::vector<double> out;
         for (const auto& item : n) {
             double x;
-            if (!parseDouble(item, x) || !std::isfinite(x))
-                d.fail(key, "expected a list of finite numbers, got " + shortText(n));
+            if (!parseDouble(item, x) || !inRange(x))
+                d.fail(key, "expected a list of finite numbers" + rangeText + ", got " + shortText(n));
             out.push_back(x);
         }
         return out;
@@ -341,8 +442,8 @@ template <> struct DictConvert<std::vector<std::vector<double>>> {
             std::vector<double> r;
             for (const auto& item : row) {
                 double x;
-                if (!parseDouble(item, x) || !std::isfinite(x))
-                    d.fail(key, "expected rows of finite numbers, got " + shortText(row));
+                if (!parseDouble(item, x) || !inRange(x))
+                    d.fail(key, "expected rows of finite numbers" + rangeText + ", got " + shortText(row));
                 r.push_back(x);
             }
             out.push_back(std::move(r));
@@ -370,8 +471,8 @@ template <> struct DictConvert<Vec3> {
             d.fail(key, "expected a vector of 3 numbers like [0, 0, 1], got " + shortText(n));
         Vec3 v;
         for (int i = 0; i < 3; ++i)
-            if (!parseDouble(n[i], v[i]) || !std::isfinite(v[i]))
-                d.fail(key, "expected a vector of 3 finite numbers, got " + shortText(n));
+            if (!parseDouble(n[i], v[i]) || !inRange(v[i]))
+                d.fail(key, "expected a vector of 3 finite numbers" + rangeText + ", got " + shortText(n));
         return v;
     }
 };
@@ -382,10 +483,10 @@ template <> struct DictConvert<Quat> {
             d.fail(key, "expected a quaternion [w, x, y, z], got " + shortText(n));
         double c[4];
         for (int i = 0; i < 4; ++i)
-            if (!parseDouble(n[i], c[i]) || !std::isfinite(c[i]))
-                d.fail(key, "expected a quaternion of 4 finite numbers, got " + shortText(n));
+            if (!parseDouble(n[i], c[i]) || !inRange(c[i]))
+                d.fail(key, "expected a quaternion of 4 finite numbers" + rangeText + ", got " + shortText(n));
         Quat q(c[0], c[1], c[2], c[3]);
-        if (q.norm() < 1e-12) d.fail(key, "quaternion has zero length");
+        if (q.coeffs().stableNorm() < 1e-12) d.fail(key, "quaternion has zero length");
         return q.normalized();
     }
 };

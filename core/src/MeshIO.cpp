@@ -1,14 +1,13 @@
-// Mesh files: assimp for reading, own code for writing binary STL and OBJ.
+// Mesh files: reading (own readers for PLY and OFF, assimp for the rest, see
+// MeshFormats.hpp), welding the result, and writing binary STL and OBJ.
 #include <magFoam/MeshIO.hpp>
 
 #include <magFoam/Error.hpp>
+#include <magFoam/InputFile.hpp>
+#include <magFoam/MeshFormats.hpp>
 
+#include "AssimpReader.hpp"
 #include "MeshNumerics.hpp"
-
-#include <assimp/Importer.hpp>
-#include <assimp/config.h>
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
 
 #include <algorithm>
 #include <bit>
@@ -37,81 +36,30 @@ std::string joined(const std::vector<std::string>& items) {
     return text;
 }
 
-// "supported: .stl .obj .ply .off (assimp also reads: *.3mf;*.dae;...)"
-std::string supportedFormats(const Assimp::Importer& importer) {
-    std::string all;
-    importer.GetExtensionList(all);
-    return "supported: " + joined(meshFileExtensions()) + " (assimp also reads: " + all + ")";
-}
+bool ownReader(const std::string& extension) { return extension == ".ply" || extension == ".off"; }
 
 } // namespace
 
 std::vector<std::string> meshFileExtensions() { return {".stl", ".obj", ".ply", ".off"}; }
 
-SurfaceMesh loadSurfaceMesh(const fs::path& path, const MeshLoadOptions& options,
-                            MeshLoadReport* report) {
-    const std::string name = path.string();
-    std::error_code ec;
-    if (!fs::exists(path, ec)) throw InputError(name + ": file not found");
-    if (fs::is_directory(path, ec))
-        throw InputError(name + ": is a directory, expected a mesh file (" +
-                         joined(meshFileExtensions()) + ")");
+ParsedMesh parseMeshBytes(std::string_view bytes, const std::string& name, const std::string& extension) {
+    if (extension == ".ply") return parsePly(bytes, name);
+    if (extension == ".off") return parseOff(bytes, name);
+    return parseWithAssimp(bytes, name, extension);
+}
+
+SurfaceMesh prepareSurfaceMesh(ParsedMesh parsed, const MeshLoadOptions& options, MeshLoadReport* report) {
+    MeshLoadReport local;
+    MeshLoadReport& info = report ? *report : local;
+    const std::string format = info.format;
+    info = MeshLoadReport{};
+    info.format = format;
+    SurfaceMesh& mesh = parsed.mesh;
+    const std::string& name = mesh.source;
     if (!std::isfinite(options.scale) || options.scale <= 0.0)
         throw InputError(name + ": scale " + meshDetail::formatNumber(options.scale) +
                          " is not allowed, expected a finite number > 0");
-
-    MeshLoadReport local;
-    MeshLoadReport& info = report ? *report : local;
-    info = MeshLoadReport{};
-    info.format = lowerExtension(path);
-
-    // Triangulate polygons; join identical vertices where the format allows it
-    // (our weld below does the rest).
-    Assimp::Importer importer;
-    importer.SetPropertyBool(AI_CONFIG_IMPORT_NO_SKELETON_MESHES, true);
-    const aiScene* scene =
-        importer.ReadFile(name, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices);
-    if (!scene) {
-        const std::string reason = importer.GetErrorString();
-        if (!importer.IsExtensionSupported(info.format))
-            throw InputError(name + ": unsupported mesh format '" + info.format + "' (assimp: " +
-                             reason + "); " + supportedFormats(importer));
-        throw InputError(name + ": cannot read the mesh (assimp: " + reason +
-                         "); supported: " + joined(meshFileExtensions()));
-    }
-
-    // Gather the triangles of every mesh the node tree places, with the node
-    // transforms applied (identity for STL, OBJ, PLY, OFF; scene formats such as
-    // glTF or COLLADA position their parts this way).
-    SurfaceMesh mesh;
-    mesh.source = name;
-    auto gather = [&](auto&& self, const aiNode* node, const aiMatrix4x4& parent) -> void {
-        const aiMatrix4x4 placement = parent * node->mTransformation;
-        // A mirroring placement turns the normals inward; reverse those triangles.
-        const bool mirrored = placement.Determinant() < 0.0f;
-        for (unsigned i = 0; i < node->mNumMeshes; ++i) {
-            const aiMesh* part = scene->mMeshes[node->mMeshes[i]];
-            const int offset = mesh.nVertices();
-            for (unsigned v = 0; v < part->mNumVertices; ++v) {
-                const aiVector3D p = placement * part->mVertices[v];
-                mesh.vertices.emplace_back(p.x, p.y, p.z);
-            }
-            for (unsigned f = 0; f < part->mNumFaces; ++f) {
-                const aiFace& face = part->mFaces[f];
-                if (face.mNumIndices != 3) {
-                    ++info.pointsAndLinesIgnored;
-                    continue;
-                }
-                const int a = offset + static_cast<int>(face.mIndices[0]);
-                const int b = offset + static_cast<int>(face.mIndices[1]);
-                const int c = offset + static_cast<int>(face.mIndices[2]);
-                mesh.triangles.push_back(mirrored ? std::array<int, 3>{a, c, b}
-                                                  : std::array<int, 3>{a, b, c});
-            }
-        }
-        for (unsigned i = 0; i < node->mNumChildren; ++i) self(self, node->mChildren[i], placement);
-    };
-    if (scene->mRootNode) gather(gather, scene->mRootNode, aiMatrix4x4());
+    info.pointsAndLinesIgnored = parsed.pointsAndLinesIgnored;
     info.verticesRead = mesh.nVertices();
     info.trianglesRead = mesh.nTriangles();
     if (mesh.triangles.empty())
@@ -122,14 +70,41 @@ SurfaceMesh loadSurfaceMesh(const fs::path& path, const MeshLoadOptions& options
                               : std::string()) +
                          ", expected a closed triangle surface");
 
-    if (options.scale != 1.0) scale(mesh, options.scale);
+    if (options.scale != 1.0) {
+        scale(mesh, options.scale);
+        for (int v = 0; v < mesh.nVertices(); ++v)
+            if (!mesh.vertices[v].allFinite() || mesh.vertices[v].cwiseAbs().maxCoeff() > meshCoordinateLimit)
+                throw InputError(name + ": scale " + meshDetail::formatNumber(options.scale) + " takes " +
+                                 describeVertex(mesh, v) + " beyond 1e30");
+    }
     info.verticesMerged = weldVertices(mesh, options.weldTolerance);
     info.collapsedTrianglesRemoved = static_cast<int>(dropCollapsedTriangles(mesh).size());
     info.unusedVerticesRemoved = removeUnusedVertices(mesh);
     if (mesh.triangles.empty())
         throw InputError(name + ": every triangle collapsed to a line or point when vertices closer "
                                 "than the weld tolerance were merged; expected a solid");
-    return mesh;
+    return std::move(mesh);
+}
+
+SurfaceMesh loadSurfaceMesh(const fs::path& path, const MeshLoadOptions& options,
+                            MeshLoadReport* report) {
+    const std::string name = path.string();
+    std::error_code ec;
+    if (fs::is_directory(path, ec))
+        throw InputError(name + ": is a directory, expected a mesh file (" +
+                         joined(meshFileExtensions()) + ")");
+    if (!std::isfinite(options.scale) || options.scale <= 0.0)
+        throw InputError(name + ": scale " + meshDetail::formatNumber(options.scale) +
+                         " is not allowed, expected a finite number > 0");
+    const std::string extension = lowerExtension(path);
+    MeshLoadReport local;
+    MeshLoadReport& info = report ? *report : local;
+    info.format = extension;
+    if (ownReader(extension))
+        return prepareSurfaceMesh(parseMeshBytes(readInputFile(path, meshFileLimit, "mesh file"), name, extension),
+                                  options, &info);
+    checkInputFile(path, meshFileLimit, "mesh file");
+    return prepareSurfaceMesh(readWithAssimp(path, extension), options, &info);
 }
 
 SurfaceMesh loadMesh(const fs::path& path, double scale) {

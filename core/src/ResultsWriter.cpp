@@ -40,7 +40,7 @@ std::optional<std::filesystem::path> latestTimeFolder(const std::filesystem::pat
         const std::string name = entry.path().filename().string();
         double t;
         auto [p, err] = std::from_chars(name.data(), name.data() + name.size(), t);
-        if (err != std::errc() || p != name.data() + name.size()) continue;
+        if (err != std::errc() || p != name.data() + name.size() || !std::isfinite(t)) continue;  // "inf", "nan"
         if (t > bestTime) bestTime = t, best = entry.path();
     }
     return best;
@@ -56,6 +56,32 @@ Quat exactOrientation(const Dict& b) {
     const std::vector<double> c = b.get<std::vector<double>>("orientation");
     const Quat q(c[0], c[1], c[2], c[3]);
     return std::abs(q.squaredNorm() - 1) <= 1e-14 ? q : normalized;
+}
+
+// Nothing non-finite is ever written: a state or result holding NaN or inf
+// is refused before the first byte, naming the body and the quantity.
+void requireFinite(double time, long step, const std::vector<Body>& bodies, const std::vector<Wrench>* wrenches,
+                   const Energies* energies) {
+    auto fail = [&](const std::string& what) {
+        throw StateError("not written: " + what + " at t = " + formatExact(time) + " s (step " +
+                         std::to_string(step) + ") is not finite");
+    };
+    if (!std::isfinite(time)) fail("the time");
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        const Body& b = bodies[i];
+        const std::string body = "body '" + b.name + "': ";
+        if (!b.position.allFinite()) fail(body + "position");
+        if (!b.orientation.coeffs().allFinite()) fail(body + "orientation");
+        if (!b.velocity.allFinite()) fail(body + "velocity");
+        if (!b.angularVelocity.allFinite()) fail(body + "angular velocity");
+        if (!b.magnetizationBody.allFinite()) fail(body + "magnetization");
+        if (wrenches && !((*wrenches)[i].force.allFinite() && (*wrenches)[i].totalTorque().allFinite()))
+            fail(body + "force or torque");
+    }
+    if (energies && !(std::isfinite(energies->kinetic) && std::isfinite(energies->gravitational) &&
+                      std::isfinite(energies->magnetic) && std::isfinite(energies->total())))
+        fail("an energy (kinetic " + formatExact(energies->kinetic) + ", gravitational " +
+             formatExact(energies->gravitational) + ", magnetic " + formatExact(energies->magnetic) + " J)");
 }
 
 } // namespace
@@ -162,6 +188,7 @@ void ResultsWriter::writeInduction(double time, long step, const InductionReport
 void ResultsWriter::write(double time, long step, const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches,
                           const Energies& e, const std::vector<StateFile>& states,
                           const std::vector<std::vector<Vec3>>& faceB) {
+    requireFinite(time, step, bodies, &wrenches, &e);
     char line[1024];
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         const Body& b = bodies[i];
@@ -195,6 +222,7 @@ std::vector<Vec3> faceCentres(const Body& body) {
 
 void ResultsWriter::writeState(double time, long step, const std::vector<Body>& bodies,
                                const std::vector<StateFile>& states) const {
+    requireFinite(time, step, bodies, nullptr, nullptr);
     const auto folder = dir_ / timeName(time);
     std::filesystem::create_directories(folder);
     // Write then rename: an interrupted write never leaves a broken state.

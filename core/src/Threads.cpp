@@ -2,6 +2,7 @@
 
 #include "magFoam/ArgList.hpp"
 #include "magFoam/Case.hpp"
+#include "magFoam/Log.hpp"
 
 #include <omp.h>
 
@@ -26,6 +27,11 @@ const bool oneThreadByDefault = [] {
 } // namespace
 
 int setThreads(int n) {
+    if (n > maxThreads()) {
+        spdlog::info("threads {} capped to {} ({} cores available to this process)", n, maxThreads(),
+                     availableCores());
+        n = maxThreads();
+    }
     omp_set_num_threads(n > 0 ? n : availableCores());
     return threads();
 }
@@ -40,6 +46,7 @@ int setThreads(const ArgList& args, const Case& c) {
 int threads() { return omp_get_max_threads(); }
 
 int availableCores() { return omp_get_num_procs(); }
+int maxThreads() { return std::max(availableCores(), 64); }
 
 void parallelFor(std::size_t n, const std::function<void(std::size_t)>& body, std::size_t grain) {
     if (n < 2 || omp_get_max_threads() < 2 || omp_in_parallel()) {

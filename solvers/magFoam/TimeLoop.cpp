@@ -1,6 +1,7 @@
 #include "TimeLoop.hpp"
 
 #include <magFoam/Dictionary.hpp>
+#include <magFoam/Error.hpp>
 #include <magFoam/Log.hpp>
 
 #include <algorithm>
@@ -70,9 +71,16 @@ TimeLoop::TimeLoop(const ControlDict& control, const Start& start)
         baseTime_ = control.startTime, baseStep_ = 0;
     else
         baseTime_ = start.time, baseStep_ = start.step;
-    const long n = std::max(0L, std::lround((control.endTime - start.time) / dt_));
+    // controlDict bounds the run to ControlDict::maxSteps steps; a restart
+    // time is read from its folder and must keep to the same bound.
+    const double steps = (control.endTime - start.time) / dt_;
+    if (!adaptive_ && !(std::abs(steps) <= ControlDict::maxSteps))
+        throw InputError(fmt::format("restart time {} s is {:.6g} steps of {} s from endTime {} s; at most 1e12",
+                                     start.time, steps, dt_, control.endTime));
+    const long n = std::max(0L, std::lround(std::clamp(steps, -1e15, 1e15)));
     lastStep_ = start.step + n;
-    writeEvery_ = std::max(1L, std::lround(control.writeInterval / dt_));
+    // Writing less often than once in 1e15 steps is never writing but at the end.
+    writeEvery_ = std::max(1L, std::lround(std::min(control.writeInterval / dt_, 1e15)));
 }
 
 bool TimeLoop::done() const { return adaptive_ ? !(time_ < endTime_) : step_ >= lastStep_; }

@@ -67,6 +67,13 @@ class ShapeCache;
 Body readBody(const Dict& entry, const std::map<std::string, Material>& materials, const std::filesystem::path& caseDir,
               ShapeCache& shapes, std::shared_ptr<const Shape> shape = nullptr);
 
+// Body names are words: letters, digits and _ - . (at most bodyNameLimit
+// characters), because they appear unquoted in every output (CSV rows, the
+// restart bodies.yaml, VTK blocks, log lines). Empty when `name` is one,
+// otherwise why not.
+inline constexpr std::size_t bodyNameLimit = 64;
+std::string bodyNameProblem(const std::string& name);
+
 // Read constant/bodies.yaml (`bodies:` list) given the materials; geometry
 // files are resolved against `caseDir/constant`.
 std::vector<Body> readBodies(const Dict& dict, const std::map<std::string, Material>& materials,

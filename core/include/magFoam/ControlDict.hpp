@@ -2,7 +2,7 @@
 //
 //   startTime: 0          # s
 //   endTime: 1.0          # s, > startTime
-//   deltaT: 0.001         # s, > 0
+//   deltaT: 0.001         # s, > 0; fixed steps: divides endTime - startTime
 //   writeInterval: 0.01   # simulated seconds between writes, > 0
 //   startFrom: startTime  # or latestTime (restart from the newest time folder)
 //   libs: []              # extra plugin libraries: bare names or paths
@@ -46,7 +46,12 @@ struct ControlDict {
     bool adjustTimeStep = false;
     double maxDeltaT = 0, minDeltaT = 0;
 
+    // Reads and checks (InputError naming the key): deltaT > 0, endTime not
+    // before startTime, at most maxSteps steps of deltaT to the largest time,
+    // and with fixed steps deltaT dividing endTime - startTime (the message
+    // proposes the nearest deltaT and endTime that do).
     static ControlDict read(const Dict& dict);
+    static constexpr double maxSteps = 1e12;
 };
 
 } // namespace mag

@@ -9,7 +9,7 @@
 //   Dict q    = d.sub("quadrature");                   // nested mapping
 //   d.reportUnused();                                  // typo -> InputError
 //
-// Supported value types: double (finite), int, bool, std::string, Vec3,
+// Supported value types: double (finite, |x| <= dictionaryNumberLimit), int, bool, std::string, Vec3,
 // Quat (w, x, y, z), std::vector<double>, std::vector<std::string>,
 // std::vector<std::vector<double>> (rows: matrices, tables).
 #pragma once
@@ -25,6 +25,12 @@
 #include <vector>
 
 namespace mag {
+
+// The largest magnitude of any number read from a dictionary (and a mesh
+// coordinate, MeshFormats.hpp). In SI units no input comes near it, and the
+// products the models form of a few such numbers (r^5, M^2 V, m v^2) stay
+// finite, where 1e308 would overflow to inf in the first of them.
+inline constexpr double dictionaryNumberLimit = 1e30;
 
 // What a model read, recorded while it is built from an example dictionary:
 // the source of `-doc TYPE` (ModelDoc.hpp), so that the keys, types and
@@ -49,7 +55,11 @@ public:
     Dict();
 
     // Parse a YAML file; malformed YAML or a top level that is not a mapping
-    // throws InputError "file:line:col: ...".
+    // throws InputError "file:line:col: ...". So do a file that is not a
+    // regular one or above dictionaryFileLimit (InputFile.hpp), a second YAML
+    // document, and aliases ('*name') that would expand to more than a million
+    // values or refer to a node that contains them (a cycle): what the reader
+    // accepts, every later walk over it can afford.
     static Dict fromFile(const std::filesystem::path& file);
     static Dict fromString(const std::string& text, const std::string& name);
     // A mapping built in code (the Python module converts dicts to nodes):

@@ -1,6 +1,6 @@
-// Reading surface meshes from files (through assimp) and writing simple ones.
+// Reading surface meshes from files and writing simple ones.
 //
-// Tested formats: STL (ASCII and binary), OBJ, PLY, OFF. Other formats assimp
+// Tested formats: STL (ASCII and binary), OBJ, PLY (ascii and binary), OFF. Other formats assimp
 // reads (3MF, glTF, COLLADA, ...) are accepted as well; their node transforms
 // are applied and all their triangles are merged into one mesh.
 //
@@ -9,6 +9,7 @@
 // Nothing else is repaired: checkTopology()/requireUsable() judge the result.
 #pragma once
 
+#include <magFoam/MeshFormats.hpp>
 #include <magFoam/SurfaceMesh.hpp>
 
 #include <filesystem>
@@ -27,7 +28,7 @@ struct MeshLoadOptions {
 // What loading did, for logs and magCheckMesh.
 struct MeshLoadReport {
     std::string format;                  // lower-case extension, e.g. ".stl"
-    int verticesRead = 0;                // as assimp delivered them
+    int verticesRead = 0;                // as the file holds them
     int trianglesRead = 0;
     int pointsAndLinesIgnored = 0;       // non-triangle primitives in the file
     int verticesMerged = 0;              // by welding
@@ -38,13 +39,20 @@ struct MeshLoadReport {
 // Extensions the loader is tested with: .stl .obj .ply .off.
 std::vector<std::string> meshFileExtensions();
 
-// Reads a mesh. InputError (naming the path) when the file is missing, is not a
-// readable mesh (assimp's message and the supported extensions), or holds no
-// triangles, or when options.scale is not a finite number > 0.
-// Precision: assimp (as packaged) stores coordinates as float, so even OBJ/PLY
-// text is read to ~7 significant digits.
+// Reads a mesh. InputError (naming the path) when the file is missing or not a
+// regular file or above meshFileLimit (InputFile.hpp), is malformed (the line
+// or element; for assimp's formats its message and the supported extensions),
+// has a vertex index out of range or a coordinate that is not finite, or holds
+// no triangles, or when options.scale is not a finite number > 0.
+// Precision: PLY and OFF are read in double precision; assimp (as packaged)
+// stores coordinates as float, so STL and OBJ text is read to ~7 digits.
 SurfaceMesh loadSurfaceMesh(const std::filesystem::path& path, const MeshLoadOptions& options = {},
                             MeshLoadReport* report = nullptr);
+
+// The same steps after parsing (scale, weld, clean-up; report->format kept):
+// loadSurfaceMesh is parseMeshBytes or assimp, then this.
+SurfaceMesh prepareSurfaceMesh(ParsedMesh parsed, const MeshLoadOptions& options = {},
+                               MeshLoadReport* report = nullptr);
 
 // Shorthand for loadSurfaceMesh(path, {.scale = scale}).
 SurfaceMesh loadMesh(const std::filesystem::path& path, double scale = 1.0);

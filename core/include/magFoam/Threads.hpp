@@ -17,7 +17,9 @@ class ArgList;
 class Case;
 
 // Set the worker count for parallelFor (0 = all cores); returns the count now
-// in effect. Until it is called the count is 1 (or OMP_NUM_THREADS).
+// in effect. A count above maxThreads() is capped to it, with a note in the
+// log: tens of thousands of threads exhaust what OpenMP can start (their
+// stacks, the process's thread limit) and crash it. Until it is called the count is 1 (or OMP_NUM_THREADS).
 int setThreads(int n);
 
 // -threads N if given, else the case's controlDict `threads` (1 without a
@@ -27,6 +29,10 @@ int setThreads(const ArgList& args, const Case& c);
 // Worker count in effect, and the cores this process may use.
 int threads();
 int availableCores();
+// The most setThreads allows: the cores, or 64 where there are fewer (a few
+// threads beyond the cores are harmless, and the tests of bit-identical
+// results use 3 on any machine).
+int maxThreads();
 
 // Run body(i) for every i in [0, n). In parallel (dynamic schedule, `grain`
 // indices at a time) unless n < 2, one thread is set, or the caller already

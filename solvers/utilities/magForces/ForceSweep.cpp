@@ -1,6 +1,7 @@
 #include "ForceSweep.hpp"
 
 #include <magFoam/Error.hpp>
+#include <magFoam/InputFile.hpp>
 #include <magFoam/Log.hpp>
 
 #include <chrono>
@@ -42,8 +43,8 @@ Sweep readSweep(const Case& c, const Dict& dict) {
     const Dict r = s.rotate ? d.sub("rotate") : d;
     const std::string dirKey = s.rotate ? "axis" : "direction";
     s.direction = r.get<Vec3>(dirKey);
-    if (s.direction.norm() == 0) r.fail(dirKey, "sweep " + dirKey + " has zero length");
-    s.direction.normalize();
+    if (!(s.direction.stableNorm() > 0)) r.fail(dirKey, "sweep " + dirKey + " has zero length");
+    s.direction.stableNormalize();
     readRange(r, s);
     r.reportUnused();
     d.reportUnused();
@@ -55,7 +56,7 @@ Sweep readSweep(const Case& c, const Dict& dict) {
 
 std::optional<Sweep> readForcesDict(const Case& c) {
     const auto file = c.dir() / "system/forcesDict.yaml";
-    if (!std::filesystem::exists(file)) return std::nullopt;
+    if (!inputPresent(file)) return std::nullopt; // a dangling link is present: its error names it
     return readSweep(c, Dict::fromFile(file));
 }
 
