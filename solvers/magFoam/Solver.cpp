@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <sstream>
 
 namespace mag::solver {
 
@@ -34,19 +35,26 @@ const Body* firstNonFinite(const std::vector<Body>& bodies, const std::vector<Wr
 
 // Everything the writers need at a write time: full wrenches and energies,
 // and (`states`) the models' restart files.
-void writeResults(ResultsWriter& writer, const MagneticSystem& magnets, const std::vector<Body>& bodies,
+void writeResults(ResultsWriter& writer, MagneticSystem& magnets, const std::vector<Body>& bodies,
                   const Vec3& gravity, double t, long step, const std::vector<StateFile>& states,
                   const std::function<void(const WriteRecord&)>& onWrite) {
     const std::vector<Wrench> w = magnets.wrenches(bodies);
     // A soft body's magnetization in the state is the one its last step was
     // taken with (converged at the step's start, and restarts continue from
     // it bit for bit); energy.csv counts the energy of the written pose, so
-    // its magnetic energy is taken with the magnetizations converged there.
+    // its magnetic energy is taken with the magnetizations converged there,
+    // on a copy, and the induction model's own state (LLG's sub-magnetizations,
+    // the next call's start) is put back exactly, so the run does not depend
+    // on when it writes.
     double magnetic = 0;
     if (std::any_of(bodies.begin(), bodies.end(), [](const Body& b) { return b.soft(); })) {
+        std::ostringstream saved;
+        magnets.inductionModel().writeState(saved, bodies);
         std::vector<Body> settled = bodies;
         magnets.converge(settled);
         magnetic = magnets.magneticEnergy(settled, magnets.wrenches(settled));
+        if (!saved.str().empty())
+            magnets.inductionModel().readState(Dict::fromString(saved.str(), "induction state"), bodies);
     } else {
         magnetic = magnets.magneticEnergy(bodies, w);
     }
