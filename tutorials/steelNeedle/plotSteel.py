@@ -56,10 +56,22 @@ angle = [math.degrees(2 * math.atan2(float(r["qz"]), float(r["qw"]))) for r in n
 down = [tn[i - 1] + (tn[i] - tn[i - 1]) * angle[i - 1] / (angle[i - 1] - angle[i])
         for i in range(1, len(tn)) if angle[i - 1] > 0 >= angle[i]]
 measured = (down[-1] - down[0]) / (len(down) - 1) if len(down) > 1 else float("nan")
-# The state at t = 0 (body frame: the field is at -theta0 to the long axis x).
-state = yaml.safe_load(open(here / "needle/0/bodies.yaml"))
-Mx, My = state["bodies"][0]["magnetization"][:2]
-Mexact = (ka * H * math.cos(theta0), -kb * H * math.sin(theta0))
+# The first written state after the start (at t = 0 the soft body is not
+# magnetized yet: the first step converges it): in the body frame the field is
+# at -theta to the long axis x, theta the needle's angle then.
+def timeOf(folder):
+    try:
+        return float(folder.name)
+    except ValueError:
+        return -1.0
+
+
+first = min((d for d in (here / "needle").iterdir() if d.is_dir() and timeOf(d) > 0), key=timeOf)
+state = yaml.safe_load(open(first / "bodies.yaml"))["bodies"][0]
+Mx, My = state["magnetization"][:2]
+qw, qz = state["orientation"][0], state["orientation"][3]
+theta1 = 2 * math.atan2(qz, qw)
+Mexact = (ka * H * math.cos(theta1), -kb * H * math.sin(theta1))
 
 # --- ball
 g, B0 = 1.0, 0.01
@@ -89,7 +101,7 @@ ax2.set_title(f"steel ball, 10 mm, chi 1000, B = 10 mT + 1 T/m z:\nlargest error
 ax2.legend(loc="upper left", fontsize=9)
 fig.tight_layout()
 fig.savefig(here / "steelNeedle.png", dpi=100)
-print(f"needle: N_a {Na:.6f}, N_b {Nb:.6f}; M at 30 deg (body frame): magFoam ({Mx:.6g}, {My:.6g}) A/m, "
+print(f"needle: N_a {Na:.6f}, N_b {Nb:.6f}; M at {math.degrees(theta1):.4f} deg (body frame): magFoam ({Mx:.6g}, {My:.6g}) A/m, "
       f"exact ({Mexact[0]:.6g}, {Mexact[1]:.6g}), relative {math.hypot(Mx - Mexact[0], My - Mexact[1]) / math.hypot(*Mexact):.2e}")
 print(f"needle: period magFoam {measured:.6e} s, exact {period:.6e} s, relative {measured / period - 1:.2e}; "
       f"amplitude {max(angle):.4f} deg (started at 30)")
