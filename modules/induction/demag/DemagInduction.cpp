@@ -290,8 +290,8 @@ private:
 const TypeDoc kDoc{
     "Physical soft iron: susceptibility, the exact demagnetization tensor, volume averages.\n"
     "Each soft body's uniform M solves M = f(H_applied + H_others - N M), N from the body's mesh,\n"
-    "the fields averaged over its volume (boundary integral of n x A), so the induced wrench\n"
-    "conserves energy. Materials: {model: soft, chi (or mur), Js, density[, saturation: false]}.",
+    "the other fields averaged over its volume as the field evaluator's energy sees them, so the\n"
+    "induced wrench conserves energy. Materials: {model: soft, chi (or mur), Js, density[, saturation: false]}.",
     {"type: demag\ntolerance: 1e-8\nmaxIterations: 200\ntensorOrder: 20\n"},
     {{"tolerance", "-", "converged when no magnetization changed by more than tolerance * Ms in a sweep, (0, 0.01]"},
      {"maxIterations", "-", "Gauss-Seidel sweeps over the soft bodies before a step is reported unconverged"},
