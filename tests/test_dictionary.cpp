@@ -3,6 +3,8 @@
 #include <magFoam/Error.hpp>
 #include <magFoam/InputFile.hpp>
 
+#include "expectError.hpp"
+
 #include <catch2/catch.hpp>
 
 #include <sys/stat.h>
@@ -101,14 +103,7 @@ std::filesystem::path badDictionary(const std::string& name) {
     return std::filesystem::path(MAG_SOURCE_DIR) / "tests/badDictionaries" / name;
 }
 
-std::string inputErrorOf(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "(no InputError)";
-}
+using magtest::inputErrorOf;
 
 // A scratch folder for files that cannot live in the repository (FIFO, links).
 struct ScratchDir {

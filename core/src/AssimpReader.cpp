@@ -27,9 +27,13 @@ std::string joined(const std::vector<std::string>& items) {
     return text;
 }
 
-// Triangulate polygons; join identical vertices where the format allows it
-// (our weld does the rest); assimp's own validation of what its importer built.
-constexpr unsigned importFlags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_ValidateDataStructure;
+// Triangulate polygons; assimp's own validation of what its importer built.
+// Vertices are joined by our weld (weldVertices, a tolerance of 1e-9 of the
+// mesh's size), not by aiProcess_JoinIdenticalVertices: assimp's tolerance
+// scales with the bounding box and is far coarser, so it merged distinct
+// vertices of thin parts (the rim of a fine 1 mm rod 0.1 m long) and the
+// mesh came back open.
+constexpr unsigned importFlags = aiProcess_Triangulate | aiProcess_ValidateDataStructure;
 
 void configure(Assimp::Importer& importer) { importer.SetPropertyBool(AI_CONFIG_IMPORT_NO_SKELETON_MESHES, true); }
 
