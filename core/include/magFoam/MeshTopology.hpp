@@ -2,15 +2,20 @@
 //
 // The field kernels integrate over the boundary of a solid, so a body's mesh must
 // be a closed, manifold, consistently and outward oriented surface with non-zero
-// volume and no zero-area triangles. checkTopology() lists every violation;
-// requireUsable() throws an InputError naming the file and the first offending
-// element; magCheckMesh prints the whole report.
+// volume and no zero-area triangles. It must also be the boundary of the region
+// whose winding number is 1: no two triangles cross or touch away from the
+// elements they share, and nested shells alternate outward, inverted (a cavity),
+// outward, ... from the outside in; otherwise the integrals count some volume
+// twice or negatively. checkTopology() lists every violation; requireUsable()
+// throws an InputError naming the file and the first offending element;
+// magCheckMesh prints the whole report.
 #pragma once
 
 #include <magFoam/SurfaceMesh.hpp>
 
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -58,19 +63,39 @@ struct TopologyReport {
     std::vector<int> inconsistentEdges;    // both triangles run the same direction
     std::vector<int> nonManifoldVertices;  // triangles around it form several fans
 
+    // Pairs of triangles {lower, higher index} that meet away from the vertex or
+    // edge they share: crossing, touching (closer than lengthTolerance) or, for
+    // neighbours over an edge, folded back onto each other. Lowest pairs first;
+    // at most maxStoredIntersections are kept, intersectingPairs counts all.
+    static constexpr std::size_t maxStoredIntersections = 1000;
+    std::vector<std::array<int, 2>> intersectingTriangles;
+    std::size_t intersectingPairs = 0;
+
     int unusedVertices = 0;                // not an error; welding leaves none
     int shells = 0;                        // connected pieces (over shared edges)
     std::vector<double> shellVolumes;      // signed volume of each shell
+    std::vector<int> triangleShell;        // shell of each triangle; -1 if it takes no part
     int eulerCharacteristic = 0;           // V - E + F over used vertices (2 per sphere-like shell)
+
+    // Nesting, checked when there are several shells and the surface is closed,
+    // manifold, oriented, free of degenerate triangles and non-intersecting (only
+    // then are inside and outside defined): the innermost other shell enclosing
+    // each shell (-1: none), and the shells that break the rule "directly inside
+    // an outward shell is an inverted one and vice versa; outermost is outward".
+    bool nestingChecked = false;
+    std::vector<int> shellContainers;
+    std::vector<int> misnestedShells;
 
     double signedVolume = 0.0;             // divergence theorem; > 0 for outward normals
     double volumeTolerance = 0.0;          // |volume| below this counts as zero
-    double lengthTolerance = 0.0;          // used for the degeneracy test
+    double lengthTolerance = 0.0;          // for the degeneracy and intersection tests
 
     bool empty() const { return edgeTable.triangleEdges.empty(); }
     bool closed() const { return boundaryEdges.empty(); }
     bool manifold() const { return nonManifoldEdges.empty() && nonManifoldVertices.empty(); }
     bool consistentlyOriented() const { return inconsistentEdges.empty(); }
+    bool nonIntersecting() const { return intersectingPairs == 0; }
+    bool properlyNested() const { return misnestedShells.empty(); }
     bool zeroVolume() const { return std::abs(signedVolume) <= volumeTolerance; }
     bool outward() const { return signedVolume > volumeTolerance; }
     bool inverted() const { return signedVolume < -volumeTolerance; }
@@ -87,6 +112,9 @@ TopologyReport checkTopology(const SurfaceMesh& mesh,
 // the count and up to maxListed elements with their coordinates. Empty if usable.
 std::vector<std::string> describeProblems(const SurfaceMesh& mesh, const TopologyReport& report,
                                           int maxListed = 3);
+
+// "shell of triangles 12-23" (contiguous) or "shell of triangle 5 (and 11 more)".
+std::string describeShell(const TopologyReport& report, int shell);
 
 // Short names of the failed checks ("open", "inverted", ...), for verdict lines.
 std::vector<std::string> problemNames(const TopologyReport& report);

@@ -103,10 +103,29 @@ bool checkAndReport(const SurfaceMesh& mesh, std::ostream& out) {
     else
         row(out, "outward", "n/a (not a closed, manifold, oriented surface)");
     row(out, "degenerate triangles", std::to_string(report.degenerateTriangles.size()));
-    for (std::size_t s = 0; s < report.shellVolumes.size() && report.shells > 1; ++s)
-        if (report.shellVolumes[s] < 0.0)
-            out << "  note: shell " << s << " has negative volume " << num(report.shellVolumes[s])
-                << " (a cavity, or an inverted part)\n";
+    row(out, "non-intersecting",
+        yesNo(report.nonIntersecting(),
+              std::to_string(report.intersectingPairs) +
+                  (report.intersectingPairs == 1 ? " pair" : " pairs") +
+                  " of triangles crossing or touching away from a shared vertex or edge"));
+    // Nesting is defined only once inside and outside are (see TopologyReport).
+    if (report.shells > 1)
+        row(out, "shells nested",
+            report.nestingChecked
+                ? yesNo(report.properlyNested(),
+                        std::to_string(report.misnestedShells.size()) +
+                            (report.misnestedShells.size() == 1 ? " shell" : " shells") +
+                            " nested wrongly")
+                : "n/a (not a closed, manifold, oriented, non-intersecting surface)");
+    for (int s = 0; s < static_cast<int>(report.shellVolumes.size()) && report.shells > 1; ++s) {
+        if (report.shellVolumes[s] >= 0.0) continue;
+        const int around = report.nestingChecked ? report.shellContainers[s] : -1;
+        out << "  note: the " << describeShell(report, s) << " has negative volume "
+            << num(report.shellVolumes[s])
+            << (around >= 0 ? " (a cavity in the " + describeShell(report, around) + ")"
+                            : std::string(" (a cavity, or an inverted part)"))
+            << '\n';
+    }
 
     const auto problems = describeProblems(mesh, report, 10);
     for (const auto& line : problems) out << "\n  problem: " << line << '\n';
@@ -186,7 +205,8 @@ int checkCase(const std::filesystem::path& dir) {
 int main(int argc, char** argv) {
     mag::ArgList args("magCheckMesh",
                       "Checks that surface meshes can be magnet bodies: closed, manifold, consistently and\n"
-                      "outward oriented, no degenerate triangles, non-zero volume. Prints counts, volume,\n"
+                      "outward oriented, no degenerate triangles, non-zero volume, no two triangles crossing\n"
+                      "or touching, nested shells inverted (cavities). Prints counts, volume,\n"
                       "centre of mass, principal moments of inertia (unit density), bounding radius, every\n"
                       "problem with the elements involved, and a verdict. Without FILE: every body of the\n"
                       "case. Formats: .stl (ASCII/binary) .obj .ply .off.\n"
