@@ -162,6 +162,9 @@ int runGuarded(const ArgList& args, const std::function<int(const ArgList&)>& bo
     } catch (const StateError& e) {
         std::cerr << "\n" << args.app() << ": stopped: " << e.what() << "\n";
         return 1;
+    } catch (const OutputError& e) {
+        std::cerr << "\n" << args.app() << ": stopped: " << e.what() << "\n";
+        return 1;
     } catch (const std::exception& e) {
         std::cerr << "\n" << args.app() << ": internal error: " << e.what() << "\n";
         return 3;

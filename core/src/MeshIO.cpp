@@ -5,6 +5,7 @@
 #include <magFoam/Error.hpp>
 #include <magFoam/InputFile.hpp>
 #include <magFoam/MeshFormats.hpp>
+#include <magFoam/OutputFile.hpp>
 
 #include "AssimpReader.hpp"
 #include "MeshNumerics.hpp"
@@ -16,6 +17,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
+#include <sstream>
 
 namespace mag {
 
@@ -118,17 +120,6 @@ SurfaceMesh loadMesh(const fs::path& path, double scale) {
 
 namespace {
 
-std::ofstream openForWriting(const fs::path& path, std::ios::openmode mode) {
-    std::ofstream out(path, mode);
-    if (!out) throw InputError(path.string() + ": cannot open the file for writing");
-    return out;
-}
-
-void finishWriting(std::ofstream& out, const fs::path& path) {
-    out.flush();
-    if (!out) throw InputError(path.string() + ": writing the file failed");
-}
-
 // STL is little-endian whatever the host is.
 void putLittleEndian(std::string& buffer, std::uint32_t value, int bytes) {
     for (int i = 0; i < bytes; ++i) buffer.push_back(static_cast<char>((value >> (8 * i)) & 0xFFu));
@@ -154,14 +145,12 @@ void writeStlBinary(const SurfaceMesh& mesh, const fs::path& path) {
             for (int i = 0; i < 3; ++i) putFloat(buffer, mesh.corner(t, k)[i]);
         putLittleEndian(buffer, 0, 2);  // attribute byte count
     }
-    std::ofstream out = openForWriting(path, std::ios::binary | std::ios::trunc);
-    out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
-    finishWriting(out, path);
+    writeFileAtomically(path, buffer);
 }
 
 void writeObj(const SurfaceMesh& mesh, const fs::path& path) {
     requireValidIndices(mesh);
-    std::ofstream out = openForWriting(path, std::ios::trunc);
+    std::ostringstream out;
     out << "# magFoam surface mesh: " << mesh.source << "\n";
     char line[128];
     for (const Vec3& p : mesh.vertices) {
@@ -171,7 +160,7 @@ void writeObj(const SurfaceMesh& mesh, const fs::path& path) {
     }
     for (const auto& tri : mesh.triangles)  // OBJ counts from 1
         out << "f " << tri[0] + 1 << ' ' << tri[1] + 1 << ' ' << tri[2] + 1 << '\n';
-    finishWriting(out, path);
+    writeFileAtomically(path, out.str());
 }
 
 void writeSurfaceMesh(const SurfaceMesh& mesh, const fs::path& path) {

@@ -4,9 +4,11 @@
 #include "magFoam/Error.hpp"
 #include "magFoam/VtkWriter.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <regex>
 #include <sstream>
 
@@ -31,9 +33,8 @@ std::string timeName(double t) {
     return std::string(buf, res.ptr);
 }
 
-std::optional<std::filesystem::path> latestTimeFolder(const std::filesystem::path& caseDir) {
-    std::optional<std::filesystem::path> best;
-    double bestTime = -1e300;
+std::vector<std::filesystem::path> timeFolders(const std::filesystem::path& caseDir) {
+    std::vector<std::pair<double, std::filesystem::path>> found;
     std::error_code ec;
     for (const auto& entry : std::filesystem::directory_iterator(caseDir, ec)) {
         if (!entry.is_directory() || !std::filesystem::exists(entry.path() / "bodies.yaml")) continue;
@@ -41,9 +42,18 @@ std::optional<std::filesystem::path> latestTimeFolder(const std::filesystem::pat
         double t;
         auto [p, err] = std::from_chars(name.data(), name.data() + name.size(), t);
         if (err != std::errc() || p != name.data() + name.size() || !std::isfinite(t)) continue;  // "inf", "nan"
-        if (t > bestTime) bestTime = t, best = entry.path();
+        found.emplace_back(t, entry.path());
     }
-    return best;
+    std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    std::vector<std::filesystem::path> out;
+    for (auto& f : found) out.push_back(std::move(f.second));
+    return out;
+}
+
+std::optional<std::filesystem::path> latestTimeFolder(const std::filesystem::path& caseDir) {
+    const auto all = timeFolders(caseDir);
+    if (all.empty()) return std::nullopt;
+    return all.front();
 }
 
 namespace {
@@ -99,6 +109,9 @@ std::string formatExact(const Vec3& v) {
 }
 
 RestartState readState(const std::filesystem::path& file, std::vector<Body>& bodies) {
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(file, ec) && std::filesystem::file_size(file, ec) == 0 && !ec)
+        throw InputError(file.string() + ": the file is empty (a write that was cut off?)");
     const Dict d = Dict::fromFile(file);
     RestartState s;
     s.time = d.get<double>("time");
@@ -126,28 +139,6 @@ RestartState readState(const std::filesystem::path& file, std::vector<Body>& bod
 
 namespace {
 
-// Keep the header and the rows whose first column (time) is <= tMax.
-void truncateCsv(const std::filesystem::path& file, double tMax) {
-    std::ifstream in(file);
-    if (!in) return;
-    std::string line, kept;
-    bool header = true;
-    while (std::getline(in, line)) {
-        if (header || std::strtod(line.c_str(), nullptr) <= tMax + 1e-12) kept += line + "\n";
-        header = false;
-    }
-    in.close();
-    std::ofstream(file) << kept;
-}
-
-std::ofstream openCsv(const std::filesystem::path& file, const std::string& header, bool append) {
-    const bool fresh = !append || !std::filesystem::exists(file);
-    std::ofstream out(file, fresh ? std::ios::trunc : std::ios::app);
-    if (!out) throw InputError(file.string() + ": cannot write");
-    if (fresh) out << header << "\n";
-    return out;
-}
-
 void vec(std::ostream& os, const Vec3& v) { os << formatExact(v); }
 
 } // namespace
@@ -155,11 +146,11 @@ void vec(std::ostream& os, const Vec3& v) { os << formatExact(v); }
 ResultsWriter::ResultsWriter(const std::filesystem::path& caseDir, std::optional<double> restartTime)
     : dir_(caseDir), restartTime_(restartTime) {
     const auto post = dir_ / "postProcessing";
-    std::filesystem::create_directories(post);
-    std::filesystem::create_directories(dir_ / "VTK");
+    makeFolder(post);
+    makeFolder(dir_ / "VTK");
     if (restartTime) {
-        truncateCsv(post / "bodies.csv", *restartTime);
-        truncateCsv(post / "energy.csv", *restartTime);
+        cutCsvAfter(post / "bodies.csv", *restartTime);
+        cutCsvAfter(post / "energy.csv", *restartTime);
         // Keep the series entries up to the restart time.
         std::ifstream pvd(dir_ / "VTK/bodies.pvd");
         const std::regex entry("timestep=\"([^\"]+)\"[^>]*file=\"([^\"]+)\"");
@@ -169,26 +160,28 @@ ResultsWriter::ResultsWriter(const std::filesystem::path& caseDir, std::optional
             if (std::regex_search(line, m, entry) && std::stod(m[1]) <= *restartTime + 1e-12)
                 series_.emplace_back(std::stod(m[1]), m[2]);
     }
-    bodiesCsv_ = openCsv(post / "bodies.csv",
-                         "time,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,Fx,Fy,Fz,Tx,Ty,Tz", restartTime.has_value());
-    energyCsv_ = openCsv(post / "energy.csv", "time,kinetic,gravitational,magnetic,total", restartTime.has_value());
+    bodiesCsv_ = AppendedFile(post / "bodies.csv", "time,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,Fx,Fy,Fz,Tx,Ty,Tz",
+                              restartTime.has_value());
+    energyCsv_ = AppendedFile(post / "energy.csv", "time,kinetic,gravitational,magnetic,total", restartTime.has_value());
 }
 
 void ResultsWriter::writeInduction(double time, long step, const InductionReport& report) {
-    if (!inductionCsv_.is_open()) {
+    if (!inductionCsv_.isOpen()) {
         const auto file = dir_ / "postProcessing/induction.csv";
-        if (restartTime_) truncateCsv(file, *restartTime_);
-        inductionCsv_ = openCsv(file, "time,step,iterations,residual,converged", restartTime_.has_value());
-        inductionCsv_.precision(12);
+        if (restartTime_) cutCsvAfter(file, *restartTime_);
+        inductionCsv_ = AppendedFile(file, "time,step,iterations,residual,converged", restartTime_.has_value());
     }
-    inductionCsv_ << time << ',' << step << ',' << report.iterations << ',' << report.residual << ','
-                  << (report.converged ? 1 : 0) << '\n';
+    char line[160];
+    std::snprintf(line, sizeof line, "%.12g,%ld,%d,%.12g,%d\n", time, step, report.iterations, report.residual,
+                  report.converged ? 1 : 0);
+    inductionCsv_.append(line);
 }
 
 void ResultsWriter::write(double time, long step, const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches,
                           const Energies& e, const std::vector<StateFile>& states,
                           const std::vector<std::vector<Vec3>>& faceB) {
     requireFinite(time, step, bodies, &wrenches, &e);
+    std::string rows;
     char line[1024];
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         const Body& b = bodies[i];
@@ -200,15 +193,15 @@ void ResultsWriter::write(double time, long step, const std::vector<Body>& bodie
                       time, b.name.c_str(), b.position.x(), b.position.y(), b.position.z(), q.w(), q.x(), q.y(), q.z(),
                       b.velocity.x(), b.velocity.y(), b.velocity.z(), b.angularVelocity.x(), b.angularVelocity.y(),
                       b.angularVelocity.z(), F.x(), F.y(), F.z(), T.x(), T.y(), T.z());
-        bodiesCsv_ << line;
+        rows += line;
     }
-    bodiesCsv_.flush();
+    bodiesCsv_.append(rows);
     std::snprintf(line, sizeof line, "%.10g,%.12g,%.12g,%.12g,%.12g\n", time, e.kinetic, e.gravitational, e.magnetic,
                   e.total());
-    energyCsv_ << line;
-    energyCsv_.flush();
-    writeState(time, step, bodies, states);
+    energyCsv_.append(line);
+    // bodies.yaml last: a time folder that has one is complete (the header).
     writeVtk(time, bodies, faceB);
+    writeState(time, step, bodies, states);
 }
 
 std::vector<Vec3> faceCentres(const Body& body) {
@@ -224,22 +217,18 @@ void ResultsWriter::writeState(double time, long step, const std::vector<Body>& 
                                const std::vector<StateFile>& states) const {
     requireFinite(time, step, bodies, nullptr, nullptr);
     const auto folder = dir_ / timeName(time);
-    std::filesystem::create_directories(folder);
-    // Write then rename: an interrupted write never leaves a broken state.
+    makeFolder(folder);
     // The models' files first: a bodies.yaml (what a restart looks for)
-    // always has the model state of the same step beside it.
-    auto writeFile = [&](const std::string& name, const std::string& text) {
-        const auto tmp = folder / (name + ".tmp");
-        {
-            std::ofstream out(tmp);
-            out << text;
-            if (!out) throw InputError(tmp.string() + ": cannot write");
-        }
-        std::filesystem::rename(tmp, folder / name);
-    };
+    // always has the model state of the same step beside it. A bodies.yaml
+    // of an earlier run in this folder goes first, so that a run cut between
+    // the model files and the new bodies.yaml leaves no mixed folder.
+    if (std::error_code ec; std::filesystem::exists(folder / "bodies.yaml")) {
+        std::filesystem::remove(folder / "bodies.yaml", ec);
+        if (ec) throw OutputError((folder / "bodies.yaml").string() + ": cannot replace (" + ec.message() + ")");
+    }
     for (const StateFile& f : states) {
         if (!f.text.empty()) {
-            writeFile(f.name, f.text);
+            writeFileAtomically(folder / f.name, f.text);
         } else {
             std::error_code ec;
             std::filesystem::remove(folder / f.name, ec);
@@ -262,7 +251,7 @@ void ResultsWriter::writeState(double time, long step, const std::vector<Body>& 
         vec(os, b.magnetizationBody);
         os << "   # A/m, body frame\n";
     }
-    writeFile("bodies.yaml", os.str());
+    writeFileAtomically(folder / "bodies.yaml", os.str());
 }
 
 void ResultsWriter::writeVtk(double time, const std::vector<Body>& bodies,
@@ -307,12 +296,13 @@ void ResultsWriter::writeVtk(double time, const std::vector<Body>& bodies,
     const std::string name = "bodies_" + std::to_string(series_.size()) + ".vtp";
     vtk::writeSurface(dir_ / "VTK" / name, points, tris, {}, cells, names);
     series_.emplace_back(time, name);
-    std::ofstream pvd(dir_ / "VTK/bodies.pvd");
+    std::ostringstream pvd;
     pvd.precision(12);
     pvd << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
     for (const auto& [t, f] : series_)
         pvd << "  <DataSet timestep=\"" << t << "\" group=\"\" part=\"0\" file=\"" << f << "\"/>\n";
     pvd << "</Collection>\n</VTKFile>\n";
+    writeFileAtomically(dir_ / "VTK/bodies.pvd", pvd.str());
 }
 
 } // namespace mag

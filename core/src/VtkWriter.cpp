@@ -1,22 +1,22 @@
 #include "magFoam/VtkWriter.hpp"
 
-#include "magFoam/Error.hpp"
+#include "magFoam/OutputFile.hpp"
 
-#include <fstream>
+#include <sstream>
 
 namespace mag::vtk {
 
 namespace {
 
-std::ofstream openFile(const std::filesystem::path& file) {
-    if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
-    std::ofstream out(file);
-    if (!out) throw InputError(file.string() + ": cannot write");
+// Each file is formatted in memory and written whole (writeFileAtomically):
+// ParaView never finds half a file, and a failed write names the file.
+std::ostringstream openFile() {
+    std::ostringstream out;
     out.precision(10);
     return out;
 }
 
-void writeArrays(std::ofstream& out, const std::vector<PointField>& fields) {
+void writeArrays(std::ostream& out, const std::vector<PointField>& fields) {
     for (const auto& f : fields) {
         out << "<DataArray type=\"Float64\" Name=\"" << f.name << "\" NumberOfComponents=\"" << f.components
             << "\" format=\"ascii\">\n";
@@ -25,7 +25,7 @@ void writeArrays(std::ofstream& out, const std::vector<PointField>& fields) {
     }
 }
 
-void writePoints(std::ofstream& out, const std::vector<Vec3>& points) {
+void writePoints(std::ostream& out, const std::vector<Vec3>& points) {
     out << "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
     for (const auto& p : points) out << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
     out << "</DataArray></Points>\n";
@@ -35,7 +35,7 @@ void writePoints(std::ofstream& out, const std::vector<Vec3>& points) {
 
 void writeImageData(const std::filesystem::path& file, const Vec3& origin, const Vec3& spacing,
                     const std::array<int, 3>& dims, const std::vector<PointField>& fields) {
-    auto out = openFile(file);
+    auto out = openFile();
     const std::string extent = "0 " + std::to_string(dims[0] - 1) + " 0 " + std::to_string(dims[1] - 1) + " 0 " +
                                std::to_string(dims[2] - 1);
     out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
@@ -44,11 +44,12 @@ void writeImageData(const std::filesystem::path& file, const Vec3& origin, const
         << "<Piece Extent=\"" << extent << "\">\n<PointData>\n";
     writeArrays(out, fields);
     out << "</PointData>\n</Piece>\n</ImageData>\n</VTKFile>\n";
+    writeFileAtomically(file, out.str());
 }
 
 void writePolyLine(const std::filesystem::path& file, const std::vector<Vec3>& points,
                    const std::vector<PointField>& fields) {
-    auto out = openFile(file);
+    auto out = openFile();
     const std::size_t n = points.size();
     out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
         << "<PolyData>\n<Piece NumberOfPoints=\"" << n << "\" NumberOfLines=\"1\">\n<PointData>\n";
@@ -59,11 +60,12 @@ void writePolyLine(const std::filesystem::path& file, const std::vector<Vec3>& p
     for (std::size_t i = 0; i < n; ++i) out << i << ' ';
     out << "\n</DataArray><DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">" << n
         << "</DataArray></Lines>\n</Piece>\n</PolyData>\n</VTKFile>\n";
+    writeFileAtomically(file, out.str());
 }
 
 void writeVertices(const std::filesystem::path& file, const std::vector<Vec3>& points,
                    const std::vector<PointField>& fields) {
-    auto out = openFile(file);
+    auto out = openFile();
     const std::size_t n = points.size();
     out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
         << "<PolyData>\n<Piece NumberOfPoints=\"" << n << "\" NumberOfVerts=\"" << n << "\">\n<PointData>\n";
@@ -75,12 +77,13 @@ void writeVertices(const std::filesystem::path& file, const std::vector<Vec3>& p
     out << "\n</DataArray><DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
     for (std::size_t i = 1; i <= n; ++i) out << i << ((i % 20) ? ' ' : '\n');
     out << "\n</DataArray></Verts>\n</Piece>\n</PolyData>\n</VTKFile>\n";
+    writeFileAtomically(file, out.str());
 }
 
 void writeSurface(const std::filesystem::path& file, const std::vector<Vec3>& points,
                   const std::vector<std::array<int, 3>>& triangles, const std::vector<PointField>& pointFields,
                   const std::vector<PointField>& cellFields, const std::vector<std::string>& names) {
-    auto out = openFile(file);
+    auto out = openFile();
     out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
         << "<PolyData>\n";
     if (!names.empty()) {
@@ -105,6 +108,7 @@ void writeSurface(const std::filesystem::path& file, const std::vector<Vec3>& po
     out << "</DataArray><DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
     for (std::size_t i = 1; i <= triangles.size(); ++i) out << 3 * i << ((i % 20) ? ' ' : '\n');
     out << "\n</DataArray></Polys>\n</Piece>\n</PolyData>\n</VTKFile>\n";
+    writeFileAtomically(file, out.str());
 }
 
 } // namespace mag::vtk

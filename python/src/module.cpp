@@ -32,6 +32,8 @@ PYBIND11_MODULE(magfoam, m) {
     // Bad input names file:line:col (or the argument), the key and what was expected.
     py::register_exception<mag::InputError>(m, "InputError", PyExc_ValueError);
     py::register_exception<mag::StateError>(m, "StateError", PyExc_RuntimeError);
+    // A result file that cannot be written (full disk, permissions): names the file.
+    py::register_exception<mag::OutputError>(m, "OutputError", PyExc_OSError);
 
     // Warnings and errors only: a notebook should not fill with the apps' progress lines.
     mag::log::init("warn");

@@ -81,3 +81,12 @@ def test_case_errors_cite_file_line_and_column(tmp_path):
         mf.Case(SOURCE / "tests/badCases/unknownType")
     with pytest.raises(mf.InputError, match=r"end_time: expected a finite time > startTime"):
         mf.Case(SOURCE / "tutorials/twoCubes").run(end_time=-1)
+
+
+def test_a_result_that_cannot_be_written_raises_output_error(copy_case):
+    # postProcessing/ is a file, not a folder: the run cannot write its CSVs.
+    case = copy_case("tutorials/dropMagnet")
+    (case / "postProcessing").write_text("in the way\n")
+    with pytest.raises(mf.OutputError, match=r"postProcessing: cannot create the folder"):
+        mf.Case(case).run(end_time=0.001)
+    assert issubclass(mf.OutputError, OSError)

@@ -1,8 +1,11 @@
 // Fuzz target: one mesh reader, chosen at compile time (MAG_FUZZ_FORMAT, e.g.
 // ".ply"). Any input must end in a mesh or an InputError; an accepted mesh
 // must have valid indices and finite coordinates (else the target aborts).
+// What a case does next, the topology checks (closed, manifold, oriented,
+// embedded, shells nested right), runs on every accepted mesh too.
 #include <magFoam/Error.hpp>
 #include <magFoam/MeshIO.hpp>
+#include <magFoam/MeshTopology.hpp>
 
 #include <cmath>
 #include <cstddef>
@@ -24,6 +27,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                 if (v < 0 || v >= mesh.nVertices()) std::abort();
         for (const mag::Vec3& p : mesh.vertices)
             if (!p.allFinite()) std::abort();
+        const mag::TopologyReport report = mag::checkTopology(mesh);
+        (void)report.usable();
     } catch (const mag::InputError&) {
     }
     return 0;

@@ -14,6 +14,13 @@ public:
     explicit InputError(const std::string& message) : std::runtime_error(message) {}
 };
 
+// A file that cannot be written (full disk, no permission, a folder gone):
+// names the file and the system's reason (OutputFile.hpp).
+class OutputError : public std::runtime_error {
+public:
+    explicit OutputError(const std::string& message) : std::runtime_error(message) {}
+};
+
 // A state the simulation must not continue from (NaN/inf in a body's state).
 class StateError : public std::runtime_error {
 public:

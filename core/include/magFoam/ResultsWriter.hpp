@@ -20,19 +20,22 @@
 //                                 Fx,Fy,Fz,Tx,Ty,Tz (magnetic force, total
 //                                 magnetic torque about the COM)
 //   postProcessing/energy.csv     time,kinetic,gravitational,magnetic,total
-// A restart (startFrom: latestTime) reads the newest <time>/bodies.yaml and
-// hands the two model files back to their models, so that it continues bit
-// for bit (docs/architecture.md). The model files are written before
-// bodies.yaml, each by write-then-rename. On restart the CSV files are
-// truncated to the restart time and appended.
+// A restart (startFrom: latestTime) reads the newest valid <time>/bodies.yaml
+// and hands the model files back to their models, so that it continues bit
+// for bit (docs/architecture.md#restart). Every write is checked and stops the
+// run with an OutputError naming the file (OutputFile.hpp). At a write time
+// the CSV rows go first, then the VTK surface and series, then the model
+// files and last bodies.yaml, each whole file by write-then-rename: a time
+// folder with a bodies.yaml is complete, whenever a run was cut. On restart
+// the CSV files are cut to the restart time and appended.
 #pragma once
 
 #include "magFoam/Body.hpp"
 #include "magFoam/InductionModel.hpp"
 #include "magFoam/FieldEvaluator.hpp"
+#include "magFoam/OutputFile.hpp"
 
 #include <filesystem>
-#include <fstream>
 #include <optional>
 #include <string>
 #include <vector>
@@ -52,7 +55,10 @@ Energies bodyEnergies(const std::vector<Body>& bodies, const Vec3& gravity, doub
 // after rounding to 1e-12 s (so 0.1 + 0.2 writes "0.3").
 std::string timeName(double t);
 
-// The newest time folder holding a bodies.yaml (nullopt when none).
+// The time folders holding a bodies.yaml, newest first (names that are not
+// finite numbers, such as "inf", are no time folders).
+std::vector<std::filesystem::path> timeFolders(const std::filesystem::path& caseDir);
+// The newest of them (nullopt when none).
 std::optional<std::filesystem::path> latestTimeFolder(const std::filesystem::path& caseDir);
 
 struct RestartState {
@@ -60,8 +66,8 @@ struct RestartState {
     long step = 0;
 };
 // Read <time>/bodies.yaml into the matching bodies (by name), every value as
-// written (a unit quaternion is not renormalised); InputError when a body is
-// missing or a value is not finite.
+// written (a unit quaternion is not renormalised); InputError when the file
+// is empty, a body is missing or a value is not finite.
 RestartState readState(const std::filesystem::path& file, std::vector<Body>& bodies);
 
 // Numbers for the restart files: 17 significant digits ("%.17g"), which
@@ -93,6 +99,13 @@ public:
                const Energies& energies, const std::vector<StateFile>& states = {},
                const std::vector<std::vector<Vec3>>& faceB = {});
 
+    // The time folder alone (bodies.yaml and `states`), without CSV rows or
+    // surfaces: the last good state of a run whose wrenches are not finite.
+    void writeStateOnly(double time, long step, const std::vector<Body>& bodies,
+                        const std::vector<StateFile>& states = {}) const {
+        writeState(time, step, bodies, states);
+    }
+
     // One row of postProcessing/induction.csv (time,step,iterations,residual,
     // converged) per step of a scene with soft bodies; the file is opened at
     // the first row (and cut at the restart time like the others).
@@ -105,7 +118,7 @@ private:
 
     std::filesystem::path dir_;
     std::optional<double> restartTime_;
-    std::ofstream bodiesCsv_, energyCsv_, inductionCsv_;
+    AppendedFile bodiesCsv_, energyCsv_, inductionCsv_;
     std::vector<std::pair<double, std::string>> series_;  // (time, vtp file) for the .pvd
 };
 

@@ -21,6 +21,7 @@
 #include <magFoam/Error.hpp>
 #include <magFoam/Log.hpp>
 #include <magFoam/MagneticSystem.hpp>
+#include <magFoam/OutputFile.hpp>
 #include <magFoam/Threads.hpp>
 #include <magFoam/VtkWriter.hpp>
 
@@ -200,7 +201,7 @@ int run(const ArgList& args) {
 
     system.converge(c.bodies());
     const auto outDir = c.dir() / "postProcessing/magField";
-    std::filesystem::create_directories(outDir);
+    makeFolder(outDir);
     for (const auto& s : sets) {
         const std::size_t n = s.points.size();
         std::vector<Vec3> B(n), A(n), H(n);
@@ -208,8 +209,7 @@ int run(const ArgList& args) {
         system.field(c.bodies(), s.points, B, A, H);
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
-        std::ofstream csv(outDir / (s.name + ".csv"));
-        csv << "x,y,z,Bx,By,Bz,magB,Ax,Ay,Az,Hx,Hy,Hz\n";
+        std::string csv = "x,y,z,Bx,By,Bz,magB,Ax,Ay,Az,Hx,Hy,Hz\n";
         char line[512];
         vtk::PointField magB{"magB", 1, {}};
         for (std::size_t i = 0; i < n; ++i) {
@@ -217,9 +217,10 @@ int run(const ArgList& args) {
             std::snprintf(line, sizeof line, "%.9g,%.9g,%.9g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g\n",
                           p.x(), p.y(), p.z(), B[i].x(), B[i].y(), B[i].z(), B[i].norm(), A[i].x(), A[i].y(), A[i].z(),
                           H[i].x(), H[i].y(), H[i].z());
-            csv << line;
+            csv += line;
             magB.values.push_back(B[i].norm());
         }
+        writeFileAtomically(outDir / (s.name + ".csv"), csv);
         const std::vector<vtk::PointField> fields = {vectorField("B", B), magB, vectorField("A", A),
                                                      vectorField("H", H)};
         if (s.type == "line")

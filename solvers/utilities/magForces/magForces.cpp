@@ -16,6 +16,7 @@
 #include <magFoam/Error.hpp>
 #include <magFoam/Log.hpp>
 #include <magFoam/MagneticSystem.hpp>
+#include <magFoam/OutputFile.hpp>
 #include <magFoam/Threads.hpp>
 
 #include "ForceSweep.hpp"
@@ -39,13 +40,13 @@ void printSoftBodies(const std::vector<Body>& bodies) {
     }
 }
 
-void writeRow(std::ofstream& csv, const std::string& prefix, const Body& b, const Wrench& w) {
+void writeRow(std::string& csv, const std::string& prefix, const Body& b, const Wrench& w) {
     const Vec3 T = w.totalTorque();
     char line[512];
     std::snprintf(line, sizeof line, "%s%s,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g\n",
                   prefix.c_str(), b.name.c_str(), w.force.x(), w.force.y(), w.force.z(), T.x(), T.y(), T.z(),
                   w.torque.x(), w.torque.y(), w.torque.z(), w.bodyEnergy());
-    csv << line;
+    csv += line;
 }
 
 int run(const ArgList& args) {
@@ -59,12 +60,11 @@ int run(const ArgList& args) {
                  "their forces follow the overlap model (docs/physics.md#overlap-models), not a contact");
     const std::optional<forces::Sweep> sweep = forces::readForcesDict(c);
 
-    std::filesystem::create_directories(c.dir() / "postProcessing");
+    // Rows are written as they come (checked: a full disk stops the run
+    // naming the file, OutputFile.hpp).
     const auto csvPath = c.dir() / "postProcessing/forces.csv";
-    std::ofstream csv(csvPath);
-    if (!csv) throw InputError(csvPath.string() + ": cannot write");
-    const std::string columns = "body,Fx,Fy,Fz,Tx,Ty,Tz,TmagX,TmagY,TmagZ,energy\n";
-    csv << (sweep ? (sweep->rotate ? "step,angle," : "step,offset,") : "") << columns;
+    const std::string columns = "body,Fx,Fy,Fz,Tx,Ty,Tz,TmagX,TmagY,TmagZ,energy";
+    AppendedFile csv(csvPath, (sweep ? (sweep->rotate ? "step,angle," : "step,offset,") : "") + columns, false);
 
     const int steps = sweep ? sweep->steps : 1;
     const double seconds = forces::evaluate(c.bodies(), system, sweep, [&](const forces::Evaluation& e) {
@@ -78,7 +78,9 @@ int run(const ArgList& args) {
             std::snprintf(angle, sizeof angle, "%.10g", offset);
             prefix = std::to_string(k) + "," + (sweep->rotate ? std::string(angle) : std::to_string(offset)) + ",";
         }
-        for (std::size_t i = 0; i < bodies.size(); ++i) writeRow(csv, prefix, bodies[i], w[i]);
+        std::string rows;
+        for (std::size_t i = 0; i < bodies.size(); ++i) writeRow(rows, prefix, bodies[i], w[i]);
+        csv.append(rows);
         if (!sweep || steps <= 20 || k % (steps / 10) == 0 || k == steps - 1) {
             if (sweep && sweep->rotate)
                 spdlog::info("step {} angle {:+.6g} deg", k, offset);

@@ -6,6 +6,7 @@
 
 #include <magFoam/Error.hpp>
 #include <magFoam/MeshIO.hpp>
+#include <magFoam/OutputFile.hpp>
 #include <magFoam/MeshPrimitives.hpp>
 #include <magFoam/MeshTopology.hpp>
 
@@ -245,7 +246,7 @@ std::vector<NamedMesh> makeCaseGeometry(const std::filesystem::path& caseDir) {
         }
 
     const std::filesystem::path folder = caseDir / "constant/geometry";
-    std::filesystem::create_directories(folder);
+    makeFolder(folder);
     for (const NamedMesh& m : meshes) writeStlBinary(m.mesh, folder / (m.name + ".stl"));
     return meshes;
 }
