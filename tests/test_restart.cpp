@@ -210,3 +210,80 @@ TEST_CASE("bodies.yaml reads back exactly what was written", "[restart]") {
         CHECK(read[i].magnetizationBody == bodies[i].magnetizationBody);
     }
 }
+
+namespace {
+
+// Two cubes on the free backend: fast, and every state file a plain write.
+void freeCubes(magtest::TempCase& c, double endTime, const std::string& extra = "") {
+    c.twoCubes(0.004, "{type: MBM, quadrature: {type: gauss, n: 3}}");
+    c.write("constant/rigidBody.yaml", "type: free\ngravity: [0, 0, -9.81]\n");
+    c.write("system/controlDict.yaml", controlDict(5e-4, endTime, 0.0025, extra));
+}
+
+} // namespace
+
+TEST_CASE("restart: the newest valid time folder; cut, empty and mislabelled ones are skipped and named",
+          "[restart][badInput]") {
+    magtest::TempCase whole, parts;
+    freeCubes(whole, 0.02);
+    freeCubes(parts, 0.01);
+    REQUIRE(runIn(whole.dir(), "log.whole") == 0);
+    REQUIRE(runIn(parts.dir(), "log.first") == 0);
+    // What a crash or a full disk can leave behind, newest first: an empty
+    // bodies.yaml, one cut in the middle, one that holds another time's
+    // state, a CSV row cut off; and an "inf" folder, which is no time.
+    const std::string good = slurp(parts.path("0.005/bodies.yaml"));
+    parts.write("0.01/bodies.yaml", "");
+    const std::string cut = slurp(parts.path("0.0075/bodies.yaml"));
+    parts.write("0.0075/bodies.yaml", cut.substr(0, cut.size() / 2));
+    parts.write("0.009/bodies.yaml", good);
+    parts.write("inf/bodies.yaml", good);
+    std::ofstream(parts.path("postProcessing/bodies.csv"), std::ios::app) << "0.0101,top,0.00";
+    parts.write("system/controlDict.yaml", controlDict(5e-4, 0.02, 0.0025, "startFrom: latestTime\n"));
+    REQUIRE(runIn(parts.dir(), "log.restart") == 0);
+    const std::string log = slurp(parts.path("log.restart"));
+    using Catch::Matchers::Contains;
+    CHECK_THAT(log, Contains("skipping time folder 0.01/: ") && Contains("the file is empty"));
+    CHECK_THAT(log, Contains("skipping time folder 0.009/: ") &&
+                        Contains("holds the state of t = 0.005") && Contains("not of its folder's time"));
+    CHECK_THAT(log, Contains("skipping time folder 0.0075/: "));
+    CHECK_THAT(log, Contains("Restarting from " + parts.path("0.005").string() + " (step 10)"));
+    // ... and continues as if nothing had happened.
+    CHECK(slurp(whole.path("0.02/bodies.yaml")) == slurp(parts.path("0.02/bodies.yaml")));
+    CHECK(slurp(whole.path("postProcessing/bodies.csv")) == slurp(parts.path("postProcessing/bodies.csv")));
+    CHECK(slurp(whole.path("postProcessing/energy.csv")) == slurp(parts.path("postProcessing/energy.csv")));
+}
+
+TEST_CASE("restart: no valid time folder is an error naming each and why", "[restart][badInput]") {
+    magtest::TempCase c;
+    freeCubes(c, 0.0025);
+    REQUIRE(runIn(c.dir(), "log.first") == 0);
+    c.write("0/bodies.yaml", "");
+    c.write("0.0025/bodies.yaml", "time: 0.0025\nstep: 2\nbodies: [");
+    c.write("system/controlDict.yaml", controlDict(5e-4, 0.005, 0.0025, "startFrom: latestTime\n"));
+    REQUIRE(runIn(c.dir(), "log.restart") == 1);
+    const std::string log = slurp(c.path("log.restart"));
+    using Catch::Matchers::Contains;
+    CHECK_THAT(log, Contains("controlDict.yaml: startFrom: latestTime, but no time folder can be restarted from"));
+    CHECK_THAT(log, Contains("  0/: ") && Contains("the file is empty"));
+    CHECK_THAT(log, Contains("  0.0025/: ") && Contains("malformed YAML"));
+}
+
+TEST_CASE("restart reads the dictionaries anew: a changed Br takes effect", "[restart]") {
+    magtest::TempCase c;
+    freeCubes(c, 0.005);
+    REQUIRE(runIn(c.dir(), "log.first") == 0);
+    c.write("constant/materials.yaml", "N: {model: permanent, Br: 0.5, density: 7500}\n");
+    c.write("system/controlDict.yaml", controlDict(5e-4, 0.01, 0.0025, "startFrom: latestTime\n"));
+    REQUIRE(runIn(c.dir(), "log.restart") == 0);
+    CHECK_THAT(slurp(c.path("log.restart")),
+               Catch::Matchers::Contains("body 'top' takes its magnetization from constant/"));
+    std::vector<mag::Body> bodies(2);
+    bodies[0].name = "bottom", bodies[1].name = "top";
+    mag::readState(c.path("0.01/bodies.yaml"), bodies);
+    for (const mag::Body& b : bodies) {
+        INFO(b.name);
+        // Br / mu0, as Case computes it: to the last bits.
+        CHECK(b.magnetizationBody.norm() == Approx(0.5 / mag::mu0).epsilon(1e-15));
+    }
+}

@@ -243,3 +243,28 @@ TEST_CASE("a non-finite wrench stops the run naming the body and step", "[solver
         if (std::filesystem::exists(c.path(csv))) CHECK(slurp(c.path(csv)).find("nan") == std::string::npos);
     CHECK_FALSE(std::filesystem::exists(c.path("0/bodies.yaml")));
 }
+
+TEST_CASE("a wrench that turns non-finite mid-run: the last good state is written, nothing non-finite",
+          "[solver][badInput]") {
+    magtest::TempCase c;
+    fallingCubes(c, "free", 0.01, "libs: [" + magtest::testPluginDir() + "/libmagTestField.so]\n");
+    // The top cube falls freely (no magnetic force); after 6 steps of 1 ms it
+    // is faster than 0.05 m/s and the field's force on it turns NaN.
+    c.write("system/magSchemes.yaml", "field: {type: testUniformField, B0: [0, 0, 0], nanAboveSpeed: 0.05}\n");
+    const int rc = runIn(c.dir(), app("magFoam"));
+    CHECK(rc == 1);
+    const std::string log = slurp(c.path("log.run"));
+    CHECK_THAT(log, Catch::Matchers::Contains("non-finite state or wrench of body 'top' in step 7") &&
+                        Catch::Matchers::Contains("last good state written to 0.006/ (its state only: its wrench "
+                                                  "is not finite)"));
+    // That state reads back, finite, and a restart from it is possible.
+    std::vector<mag::Body> bodies(2);
+    bodies[0].name = "bottom", bodies[1].name = "top";
+    const mag::RestartState s = mag::readState(c.path("0.006/bodies.yaml"), bodies);
+    CHECK(s.step == 6);
+    CHECK(bodies[1].velocity.norm() == Approx(6 * 9.81e-3).epsilon(1e-12));
+    for (const char* csv : {"postProcessing/bodies.csv", "postProcessing/energy.csv"}) {
+        INFO(csv);
+        CHECK(slurp(c.path(csv)).find("nan") == std::string::npos);
+    }
+}

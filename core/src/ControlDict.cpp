@@ -39,6 +39,22 @@ void checkTimeAxis(const Dict& d, const ControlDict& c) {
                                  g(c.startTime + std::max(down, 1.0) * c.deltaT), g(c.startTime + up * c.deltaT)));
 }
 
+// Fixed steps are written every writeInterval / deltaT steps: a whole number
+// of them, or the written times would not be the ones asked for.
+void checkWriteInterval(const Dict& d, const ControlDict& c) {
+    if (c.adjustTimeStep) return;  // adaptive steps end on every write time exactly
+    const double steps = c.writeInterval / c.deltaT;
+    if (steps > ControlDict::maxSteps) return;  // never written but at the end
+    const double n = std::round(steps);
+    if (n >= 1 && std::abs(steps - n) <= 1e-6 * n) return;
+    const double down = std::max(1.0, std::floor(steps)), up = std::max(1.0, std::ceil(steps));
+    std::string options = "writeInterval " + g(up * c.deltaT);
+    if (down != up) options = "writeInterval " + g(down * c.deltaT) + " or " + g(up * c.deltaT);
+    d.fail("writeInterval", fmt::format("writeInterval {} s is {} steps of deltaT {} s: fixed steps are written "
+                                        "every whole number of steps. Use {} s, or adjustTimeStep: true",
+                                        g(c.writeInterval), fmt::format("{:.9g}", steps), g(c.deltaT), options));
+}
+
 } // namespace
 
 ControlDict ControlDict::read(const Dict& d) {
@@ -65,6 +81,7 @@ ControlDict ControlDict::read(const Dict& d) {
     if (c.threads < 0) d.fail("threads", "threads must be >= 0 (0 = all cores)");
     c.adjustTimeStep = d.get<bool>("adjustTimeStep", false);
     checkTimeAxis(d, c);
+    checkWriteInterval(d, c);
     c.maxDeltaT = d.get<double>("maxDeltaT", 100.0 * c.deltaT);
     c.minDeltaT = d.get<double>("minDeltaT", 1e-3 * c.deltaT);
     if (!(c.minDeltaT > 0)) d.fail("minDeltaT", "must be > 0 (seconds)");

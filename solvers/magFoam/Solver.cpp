@@ -163,10 +163,18 @@ void run(Case& c, const RunOptions& options) {
         if (const Body* bad = firstNonFinite(bodies, &wrenches)) {
             std::vector<Body> good = bodies;
             for (std::size_t i = 0; i < good.size(); ++i) static_cast<BodyState&>(good[i]) = lastGood[i];
-            write(good, before, step - 1, false);  // the models hold the bad step's state
+            // The models hold the bad step's state: bodies.yaml alone. With a
+            // non-finite wrench the good state's results cannot be written
+            // either (nothing non-finite is), but its restart state can.
+            std::string written = "last good state written to " + timeName(before) + "/";
+            try {
+                write(good, before, step - 1, false);
+            } catch (const StateError&) {
+                writer.writeStateOnly(before, step - 1, good);
+                written += " (its state only: its wrench is not finite)";
+            }
             throw StateError("non-finite state or wrench of body '" + bad->name + "' in step " +
-                             std::to_string(step) + " (t = " + std::to_string(t) +
-                             " s); last good state written to " + timeName(before) + "/");
+                             std::to_string(step) + " (t = " + formatExact(t) + " s); " + written);
         }
         loop.end();
         lastDeltaT = dt;

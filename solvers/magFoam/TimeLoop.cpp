@@ -22,6 +22,24 @@ template <class Clock> double seconds(typename Clock::time_point since) {
     return std::chrono::duration<double>(Clock::now() - since).count();
 }
 
+// A time folder a restart can continue from: its bodies.yaml (read into a
+// copy of the bodies) is of the folder's own time, and the model files beside
+// it read as dictionaries. Throws InputError saying what is wrong.
+RestartState checkTimeFolder(const std::filesystem::path& folder, std::vector<Body> bodies) {
+    const RestartState r = readState(folder / "bodies.yaml", bodies);
+    if (timeName(r.time) != folder.filename().string())
+        throw InputError((folder / "bodies.yaml").string() + ": holds the state of t = " + formatExact(r.time) +
+                         " s, not of its folder's time");
+    for (const char* name : {kInductionFile, kRigidBodyFile, kTimeStepFile})
+        if (const auto file = folder / name; std::filesystem::exists(file)) {
+            std::error_code ec;
+            if (std::filesystem::file_size(file, ec) == 0 && !ec)
+                throw InputError(file.string() + ": the file is empty (a write that was cut off?)");
+            (void)Dict::fromFile(file);
+        }
+    return r;
+}
+
 } // namespace
 
 Start startRun(const Case& c, std::vector<Body>& bodies, InductionModel& induction, RigidBodyBackend& backend) {
@@ -29,9 +47,39 @@ Start startRun(const Case& c, std::vector<Body>& bodies, InductionModel& inducti
     Start s;
     s.time = control.startTime;
     if (control.startFrom != "latestTime") return s;
-    const auto folder = latestTimeFolder(c.dir());
+    // The newest time folder that is complete and readable; the ones skipped
+    // are named with the reason (a run cut by a crash or a full disk).
+    std::optional<std::filesystem::path> folder;
+    std::string skipped;
+    for (const auto& candidate : timeFolders(c.dir())) {
+        try {
+            checkTimeFolder(candidate, bodies);
+            folder = candidate;
+            break;
+        } catch (const InputError& e) {
+            spdlog::warn("Restart: skipping time folder {}/: {}", candidate.filename().string(), e.what());
+            skipped += "\n  " + candidate.filename().string() + "/: " + e.what();
+        }
+    }
+    if (!folder && !skipped.empty())
+        throw InputError((c.dir() / "system/controlDict.yaml").string() +
+                         ": startFrom: latestTime, but no time folder can be restarted from:" + skipped +
+                         "\n(remove them, or set startFrom: startTime to start anew)");
     if (!folder) return s;
+    // Permanent magnetizations come from the dictionaries, read anew as in
+    // OpenFOAM (a changed Br or direction takes effect); the state's value is
+    // what the run had, so an unchanged case continues bit for bit.
+    const std::vector<Body> fromDictionaries = bodies;
     const RestartState r = readState(*folder / "bodies.yaml", bodies);
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        if (bodies[i].soft()) continue;
+        const Vec3 dict = fromDictionaries[i].magnetizationBody;
+        if (bodies[i].magnetizationBody != dict)
+            spdlog::info("Restart: body '{}' takes its magnetization from constant/ ({} A/m, body frame), not the "
+                         "state's ({} A/m)",
+                         bodies[i].name, formatExact(dict), formatExact(bodies[i].magnetizationBody));
+        bodies[i].magnetizationBody = dict;
+    }
     s.time = r.time, s.step = r.step, s.folder = folder;
     spdlog::info("Restarting from {} (step {})", folder->string(), s.step);
     // The bodies were set from outside; then what the models carried.
