@@ -32,14 +32,21 @@ double bestSecondsPerCall(const std::function<void()>& f, double minSeconds, int
     return best;
 }
 
-std::ofstream openCsv(const std::filesystem::path& caseDir, const std::string& file, const std::string& header) {
-    const auto dir = caseDir / "postProcessing";
-    std::filesystem::create_directories(dir);
-    std::ofstream out(dir / file);
-    if (!out) throw InputError((dir / file).string() + ": cannot write");
-    out.precision(10);
-    out << header << "\n";
-    return out;
+CsvFile::CsvFile(const std::filesystem::path& file, const std::string& header) : file_(file, header, false) {
+    buffer_.precision(10);
+}
+
+void CsvFile::writeLines() {
+    const std::string text = buffer_.str();
+    const std::size_t end = text.rfind('\n');
+    if (end == std::string::npos) return;
+    file_.append(std::string_view(text).substr(0, end + 1));
+    buffer_.str(text.substr(end + 1));
+    buffer_.seekp(0, std::ios::end);
+}
+
+CsvFile openCsv(const std::filesystem::path& caseDir, const std::string& file, const std::string& header) {
+    return CsvFile(caseDir / "postProcessing" / file, header);
 }
 
 int runStudies(const ArgList& args, const std::string& dictFile, const std::map<std::string, Study>& known) {

@@ -6,11 +6,12 @@
 
 #include "magFoam/ArgList.hpp"
 #include "magFoam/Dictionary.hpp"
+#include "magFoam/OutputFile.hpp"
 
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <map>
+#include <sstream>
 #include <string>
 
 namespace mag::bench {
@@ -22,8 +23,26 @@ double bestSecondsPerCall(const std::function<void()>& f, double minSeconds, int
 // One run of at least minSeconds.
 double secondsPerCall(const std::function<void()>& f, double minSeconds = 0.05);
 
+// A study's CSV: values formatted as a stream formats them (10 significant
+// digits), each line written through as it ends, every write checked
+// (OutputFile.hpp: a full disk stops the app naming the file).
+class CsvFile {
+public:
+    CsvFile(const std::filesystem::path& file, const std::string& header);
+    template <class T> CsvFile& operator<<(const T& value) {
+        buffer_ << value;
+        writeLines();
+        return *this;
+    }
+
+private:
+    void writeLines();
+    AppendedFile file_;
+    std::ostringstream buffer_;
+};
+
 // Open postProcessing/<file> under the case, with a header row.
-std::ofstream openCsv(const std::filesystem::path& caseDir, const std::string& file, const std::string& header);
+CsvFile openCsv(const std::filesystem::path& caseDir, const std::string& file, const std::string& header);
 
 // A study: its sub-dictionary and the case folder.
 using Study = void (*)(const Dict& study, const std::filesystem::path& caseDir);
