@@ -143,8 +143,9 @@ void vec(std::ostream& os, const Vec3& v) { os << formatExact(v); }
 
 } // namespace
 
-ResultsWriter::ResultsWriter(const std::filesystem::path& caseDir, std::optional<double> restartTime)
-    : dir_(caseDir), restartTime_(restartTime) {
+ResultsWriter::ResultsWriter(const std::filesystem::path& caseDir, std::optional<double> restartTime,
+                             bool sleepColumn)
+    : dir_(caseDir), restartTime_(restartTime), sleepColumn_(sleepColumn) {
     const auto post = dir_ / "postProcessing";
     makeFolder(post);
     makeFolder(dir_ / "VTK");
@@ -160,7 +161,9 @@ ResultsWriter::ResultsWriter(const std::filesystem::path& caseDir, std::optional
             if (std::regex_search(line, m, entry) && std::stod(m[1]) <= *restartTime + 1e-12)
                 series_.emplace_back(std::stod(m[1]), m[2]);
     }
-    bodiesCsv_ = AppendedFile(post / "bodies.csv", "time,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,Fx,Fy,Fz,Tx,Ty,Tz",
+    bodiesCsv_ = AppendedFile(post / "bodies.csv",
+                              std::string("time,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,Fx,Fy,Fz,Tx,Ty,Tz") +
+                                  (sleepColumn ? ",asleep" : ""),
                               restartTime.has_value());
     energyCsv_ = AppendedFile(post / "energy.csv", "time,kinetic,gravitational,magnetic,total", restartTime.has_value());
 }
@@ -179,7 +182,7 @@ void ResultsWriter::writeInduction(double time, long step, const InductionReport
 
 void ResultsWriter::write(double time, long step, const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches,
                           const Energies& e, const std::vector<StateFile>& states,
-                          const std::vector<std::vector<Vec3>>& faceB) {
+                          const std::vector<std::vector<Vec3>>& faceB, const std::vector<char>* asleep) {
     requireFinite(time, step, bodies, &wrenches, &e);
     std::string rows;
     char line[1024];
@@ -189,11 +192,13 @@ void ResultsWriter::write(double time, long step, const std::vector<Body>& bodie
         const Vec3 F = wrenches[i].force, T = wrenches[i].totalTorque();
         std::snprintf(line, sizeof line,
                       "%.10g,%s,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,"
-                      "%.10g,%.10g,%.10g,%.10g,%.10g,%.10g\n",
+                      "%.10g,%.10g,%.10g,%.10g,%.10g,%.10g",
                       time, b.name.c_str(), b.position.x(), b.position.y(), b.position.z(), q.w(), q.x(), q.y(), q.z(),
                       b.velocity.x(), b.velocity.y(), b.velocity.z(), b.angularVelocity.x(), b.angularVelocity.y(),
                       b.angularVelocity.z(), F.x(), F.y(), F.z(), T.x(), T.y(), T.z());
         rows += line;
+        if (sleepColumn_) rows += asleep && i < asleep->size() && (*asleep)[i] ? ",1" : ",0";
+        rows += '\n';
     }
     bodiesCsv_.append(rows);
     std::snprintf(line, sizeof line, "%.10g,%.12g,%.12g,%.12g,%.12g\n", time, e.kinetic, e.gravitational, e.magnetic,

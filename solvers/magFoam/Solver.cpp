@@ -7,6 +7,7 @@
 #include <magFoam/RigidBodyBackend.hpp>
 #include <magFoam/Threads.hpp>
 
+#include "Sleeping.hpp"
 #include "StepAudit.hpp"
 #include "TimeLoop.hpp"
 
@@ -37,7 +38,7 @@ const Body* firstNonFinite(const std::vector<Body>& bodies, const std::vector<Wr
 // and (`states`) the models' restart files.
 void writeResults(ResultsWriter& writer, MagneticSystem& magnets, const std::vector<Body>& bodies,
                   const Vec3& gravity, double t, long step, const std::vector<StateFile>& states,
-                  const std::function<void(const WriteRecord&)>& onWrite) {
+                  const std::function<void(const WriteRecord&)>& onWrite, const std::vector<char>* asleep) {
     const std::vector<Wrench> w = magnets.wrenches(bodies);
     // A soft body's magnetization in the state is the one its last step was
     // taken with (converged at the step's start, and restarts continue from
@@ -66,7 +67,7 @@ void writeResults(ResultsWriter& writer, MagneticSystem& magnets, const std::vec
         magnets.field(bodies, centres, faceB[i], {}, {}, &bodies[i]);
     }
     const Energies energies = bodyEnergies(bodies, gravity, magnetic);
-    writer.write(t, step, bodies, w, energies, states, faceB);
+    writer.write(t, step, bodies, w, energies, states, faceB, asleep);
     if (onWrite) onWrite(WriteRecord{t, step, bodies, w, energies});
 }
 
@@ -95,6 +96,8 @@ constexpr double kMaxGrowth = 1.2;
 void run(Case& c, const RunOptions& options) {
     const int threads = mag::threads();
     MagneticSystem magnets(c);
+    // The solver's own keys of rigidBody.yaml first: the backend takes the rest.
+    const SleepSettings sleepSettings = SleepSettings::read(c.rigidBody());
     std::unique_ptr<RigidBodyBackend> backend = RigidBodyBackend::New(c.rigidBody());
     const Vec3 gravity = c.rigidBody().get<Vec3>("gravity", Vec3::Zero());
     const bool soft = c.hasSoftBodies();
@@ -108,18 +111,29 @@ void run(Case& c, const RunOptions& options) {
     if (!start.folder)
         warnOverlaps(bodies, (c.dir() / "constant" / "bodies.yaml").string(),
                      "a contact solver pushes them apart at the start, adding kinetic energy");
+    Sleeping sleeping(sleepSettings, bodies, gravity, magnets.appliedField().timeDependent());
+    if (sleeping.enabled() && !backend->canSleep())
+        throw InputError((c.dir() / "constant/rigidBody.yaml").string() + ": sleep: the rigid-body backend '" +
+                         backend->describe() + "' cannot hold bodies still; remove sleep: or use ODE or free");
+    if (start.folder) {
+        if (const auto file = *start.folder / "sleep.yaml"; std::filesystem::exists(file))
+            sleeping.readState(Dict::fromFile(file), bodies, *backend);
+    }
     ControlDict control = c.control();
     if (options.endTime) control.endTime = *options.endTime;
     TimeLoop loop(control, start);
-    ResultsWriter writer(c.dir(), start.folder ? std::optional<double>(start.time) : std::nullopt);
+    ResultsWriter writer(c.dir(), start.folder ? std::optional<double>(start.time) : std::nullopt,
+                         sleeping.enabled());
     double lastDeltaT = start.lastDeltaT > 0 ? start.lastDeltaT : c.control().deltaT;
     auto write = [&](const std::vector<Body>& state, double t, long step, bool withModels) {
         magnets.setTime(t);
-        writeResults(writer, magnets, state, gravity, t, step,
-                     withModels ? modelStates(magnets.inductionModel(), *backend, state,
-                                              loop.adaptive() ? lastDeltaT : 0.0)
-                                : std::vector<StateFile>{},
-                     options.onWrite);
+        std::vector<StateFile> states;
+        if (withModels) {
+            states = modelStates(magnets.inductionModel(), *backend, state, loop.adaptive() ? lastDeltaT : 0.0);
+            states.push_back({"sleep.yaml", sleeping.stateText(state)});
+        }
+        writeResults(writer, magnets, state, gravity, t, step, states, options.onWrite,
+                     sleeping.enabled() ? &sleeping.asleep() : nullptr);
     };
     describeRun(c, magnets, *backend, loop, threads);
     if (!start.folder) write(bodies, loop.time(), loop.step(), true);
@@ -145,11 +159,25 @@ void run(Case& c, const RunOptions& options) {
         // Algorithm 1: induction loop (only with soft bodies), then wrenches.
         stats.start(RunStatistics::Phase::magnetic);
         magnets.setTime(before);
-        const MagneticSystem::Step magnetic = magnets.step(bodies);
+        const MagneticSystem::Step magnetic = sleeping.magnetic(magnets, bodies);
         const std::vector<Wrench>& wrenches = magnetic.wrenches;
-        // The step's length: fixed, or what the motion and stiffness allow now.
-        const double proposal =
-            loop.adaptive() ? std::min(kMaxGrowth * lastDeltaT, audit.stableDeltaT(bodies, wrenches)) : 0.0;
+        // Sleeping bodies whose surroundings changed wake before the step.
+        sleeping.wakeBeforeStep(bodies, wrenches, *backend, step, before);
+        // The step's length: fixed, or what the motion and stiffness of the
+        // awake bodies allow now.
+        double proposal = 0.0;
+        if (loop.adaptive()) {
+            double stable = 0.0;
+            if (sleeping.anyAsleep()) {
+                std::vector<Body> awake = bodies;
+                for (std::size_t i = 0; i < awake.size(); ++i)
+                    if (sleeping.asleep()[i]) awake[i].fixed = true;
+                stable = audit.stableDeltaT(awake, wrenches);
+            } else {
+                stable = audit.stableDeltaT(bodies, wrenches);
+            }
+            proposal = std::min(kMaxGrowth * lastDeltaT, stable);
+        }
         const double dt = loop.begin(proposal);
         const double t = loop.endOfStep();
         if (soft) writer.writeInduction(t, step, magnetic.induction);
@@ -178,6 +206,7 @@ void run(Case& c, const RunOptions& options) {
         }
         loop.end();
         lastDeltaT = dt;
+        sleeping.sleepAfterStep(bodies, wrenches, *backend, dt, step, t);
         if (const auto stop = audit.check(step, t, dt, lastGood, bodies, wrenches, magnets.magneticEnergy(bodies, wrenches))) {
             write(bodies, t, step, true);
             throw StateError(*stop + " (audit.strict; state written to " + timeName(t) + "/)");
@@ -191,6 +220,7 @@ void run(Case& c, const RunOptions& options) {
     }
     stats.summary();
     audit.summary(bodies);
+    sleeping.summary();
     spdlog::info("  field: {}", magnets.fieldEvaluator().describe());
     if (const FieldStats fs = magnets.fieldEvaluator().stats(); !fs.counts.empty()) {
         spdlog::info("  field counters: {}", fs.format());

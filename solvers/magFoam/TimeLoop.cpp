@@ -30,13 +30,17 @@ RestartState checkTimeFolder(const std::filesystem::path& folder, std::vector<Bo
     if (timeName(r.time) != folder.filename().string())
         throw InputError((folder / "bodies.yaml").string() + ": holds the state of t = " + formatExact(r.time) +
                          " s, not of its folder's time");
-    for (const char* name : {kInductionFile, kRigidBodyFile, kTimeStepFile})
-        if (const auto file = folder / name; std::filesystem::exists(file)) {
-            std::error_code ec;
-            if (std::filesystem::file_size(file, ec) == 0 && !ec)
-                throw InputError(file.string() + ": the file is empty (a write that was cut off?)");
-            (void)Dict::fromFile(file);
-        }
+    // Every other state file beside it (the models', timeStep.yaml, sleep.yaml).
+    std::vector<std::filesystem::path> files;
+    for (const auto& entry : std::filesystem::directory_iterator(folder))
+        if (entry.path().extension() == ".yaml" && entry.path().filename() != "bodies.yaml") files.push_back(entry);
+    std::sort(files.begin(), files.end());
+    for (const auto& file : files) {
+        std::error_code ec;
+        if (std::filesystem::file_size(file, ec) == 0 && !ec)
+            throw InputError(file.string() + ": the file is empty (a write that was cut off?)");
+        (void)Dict::fromFile(file);
+    }
     return r;
 }
 

@@ -89,15 +89,18 @@ std::vector<Vec3> faceCentres(const Body& body);
 class ResultsWriter {
 public:
     // restartTime: drop CSV rows after it (nullopt: start the files anew).
-    ResultsWriter(const std::filesystem::path& caseDir, std::optional<double> restartTime);
+    // sleepColumn: bodies.csv ends with a column `asleep` (1: the body sleeps,
+    // docs/dynamics.md#sleeping).
+    ResultsWriter(const std::filesystem::path& caseDir, std::optional<double> restartTime, bool sleepColumn = false);
 
     // One write time. `states` go into the time folder before bodies.yaml;
     // one with empty text removes an older file of that name there.
     // `faceB`: per body, B of all the other bodies at its triangles' centres
     // (faceCentres(), world frame, T); empty: the surfaces carry no field.
+    // `asleep`: per body, for the column of sleepColumn.
     void write(double time, long step, const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches,
                const Energies& energies, const std::vector<StateFile>& states = {},
-               const std::vector<std::vector<Vec3>>& faceB = {});
+               const std::vector<std::vector<Vec3>>& faceB = {}, const std::vector<char>* asleep = nullptr);
 
     // The time folder alone (bodies.yaml and `states`), without CSV rows or
     // surfaces: the last good state of a run whose wrenches are not finite.
@@ -118,6 +121,7 @@ private:
 
     std::filesystem::path dir_;
     std::optional<double> restartTime_;
+    bool sleepColumn_ = false;
     AppendedFile bodiesCsv_, energyCsv_, inductionCsv_;
     std::vector<std::pair<double, std::string>> series_;  // (time, vtp file) for the .pvd
 };

@@ -44,6 +44,17 @@ public:
     virtual void writeState(std::ostream& /*yaml*/, const std::vector<Body>& /*bodies*/) const {}
     virtual void readState(const Dict& /*state*/, const std::vector<Body>& /*bodies*/) {}
 
+    // Sleeping bodies (docs/dynamics.md#sleeping; the solver decides who
+    // sleeps): from now on the bodies with asleep[i] != 0 rest where they are,
+    // with zero velocity (written into `bodies`), until a later call wakes
+    // them; the others move on. A backend whose contacts can wake a sleeping
+    // body (touched by a moving one) reports it in sleeping(). The default
+    // supports no sleeping.
+    virtual bool canSleep() const { return false; }
+    virtual void setSleeping(std::vector<Body>& /*bodies*/, const std::vector<char>& /*asleep*/) {}
+    // Which bodies rest now (empty: none, or no sleeping).
+    virtual std::vector<char> sleeping() const { return {}; }
+
     virtual std::string describe() const = 0;
 
     using Registry = mag::Registry<RigidBodyBackend>;

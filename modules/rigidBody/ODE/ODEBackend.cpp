@@ -407,7 +407,7 @@ public:
             // External wrench (ODE clears its accumulators after every step).
             for (std::size_t i = 0; i < bodies.size(); ++i) {
                 const Entry& e = entries_[i];
-                if (!e.body) continue;
+                if (!e.body || !dBodyIsEnabled(e.body)) continue;
                 const Vec3& F = wrenches[i].force;
                 const Vec3 T = wrenches[i].totalTorque();
                 dBodyAddForce(e.body, F.x(), F.y(), F.z());
@@ -425,6 +425,33 @@ public:
         }
 
         for (std::size_t i = 0; i < bodies.size(); ++i) pull(bodies[i], entries_[i]);
+    }
+
+    // A sleeping body is a disabled ODE body: not stepped, at rest. ODE
+    // enables a disabled body again when a contact joins it to an enabled
+    // one; sleeping() reports it.
+    bool canSleep() const override { return true; }
+    void setSleeping(std::vector<Body>& bodies, const std::vector<char>& asleep) override {
+        std::lock_guard lock(odeMutex());
+        for (std::size_t i = 0; i < bodies.size() && i < entries_.size(); ++i) {
+            const dBodyID body = entries_[i].body;
+            if (!body) continue;
+            if (i < asleep.size() && asleep[i]) {
+                bodies[i].velocity.setZero(), bodies[i].angularVelocity.setZero();
+                dBodySetLinearVel(body, 0, 0, 0);
+                dBodySetAngularVel(body, 0, 0, 0);
+                dBodyDisable(body);
+            } else {
+                dBodyEnable(body);
+            }
+        }
+    }
+    std::vector<char> sleeping() const override {
+        std::lock_guard lock(odeMutex());
+        std::vector<char> out(entries_.size(), 0);
+        for (std::size_t i = 0; i < entries_.size(); ++i)
+            out[i] = entries_[i].body && !dBodyIsEnabled(entries_[i].body);
+        return out;
     }
 
     void setState(const std::vector<Body>& bodies) override {

@@ -151,7 +151,7 @@ public:
         for (std::size_t i = 0; i < bodies.size(); ++i) {
             Body& b = bodies[i];
             State& s = states_[i];
-            if (b.fixed) {
+            if (b.fixed || s.asleep) {
                 b.velocity.setZero();
                 b.angularVelocity.setZero();
                 continue;
@@ -173,6 +173,23 @@ public:
             s.started = true;
             s.L = L;
         }
+    }
+
+    // A sleeping body does not move; woken, it starts afresh (verlet: no kick
+    // carried over its sleep).
+    bool canSleep() const override { return true; }
+    void setSleeping(std::vector<Body>& bodies, const std::vector<char>& asleep) override {
+        for (std::size_t i = 0; i < bodies.size() && i < states_.size(); ++i) {
+            const bool now = i < asleep.size() && asleep[i] && !bodies[i].fixed;
+            if (now) bodies[i].velocity.setZero(), bodies[i].angularVelocity.setZero();
+            if (now != states_[i].asleep) states_[i].started = false;
+            states_[i].asleep = now;
+        }
+    }
+    std::vector<char> sleeping() const override {
+        std::vector<char> out(states_.size());
+        for (std::size_t i = 0; i < states_.size(); ++i) out[i] = states_[i].asleep;
+        return out;
     }
 
     // verlet: the next step starts afresh from the bodies' state.
@@ -239,6 +256,7 @@ private:
         double mass = 0;
         Vec3 moments = Vec3::Ones();      // principal moments, kg m^2
         Quat principal = Quat::Identity(); // principal frame -> body frame
+        bool asleep = false;               // resting until woken (setSleeping)
         // verlet only (the restart state):
         bool started = false;
         Vec3 L = Vec3::Zero();             // world angular momentum at the end of the last step

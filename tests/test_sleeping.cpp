@@ -1,0 +1,145 @@
+// Sleeping bodies (docs/dynamics.md#sleeping) in magFoam runs: a cube magnet
+// dropped onto a fixed disc magnet comes to rest and falls asleep; a second
+// cube dropped from 30 cm wakes it as it comes near (its magnetic wrench
+// changes) and both end asleep, stacked. The same scene without sleeping is
+// the reference for the outcome; a split run with a restart is the reference
+// for exactness.
+#include "caseFixture.hpp"
+
+#include <magFoam/Dictionary.hpp>
+#include <magFoam/ResultsWriter.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <regex>
+#include <sstream>
+#include <sys/wait.h>
+
+using Catch::Matchers::Contains;
+using magtest::slurp;
+
+namespace {
+
+int runIn(const std::filesystem::path& dir, const std::string& log) {
+    const std::string cmd = "cd '" + dir.string() + "' && '" + magtest::appPath("magFoam") + "' > " + log + " 2>&1";
+    return WEXITSTATUS(std::system(cmd.c_str()));
+}
+
+// The stack scene; `sleep`: the rigidBody.yaml line (empty: no sleeping).
+void stack(magtest::TempCase& c, double endTime, const std::string& sleep, const std::string& extra = "") {
+    std::ostringstream ctl;
+    ctl << "endTime: " << endTime << "\ndeltaT: 0.00005\nadjustTimeStep: true\nmaxDeltaT: 0.01\n"
+        << "writeInterval: 0.005\n" << extra;
+    c.write("system/controlDict.yaml", ctl.str());
+    c.write("system/magSchemes.yaml",
+            "field: {type: hybrid, near: {type: MBM, quadrature: {type: gauss, n: 6}, overlap: amperian},\n"
+            "        far: {type: EDM, n: 2}}\n");
+    c.write("constant/materials.yaml", "N42: {model: permanent, Br: 1.3, density: 7500}\n");
+    c.write("constant/bodies.yaml",
+            "bodies:\n"
+            "  - {name: disc, geometry: {cylinder: {radius: 0.01, height: 0.004, segments: 48}}, material: N42,\n"
+            "     magnetization: [0, 0, 1], position: [0, 0, 0.002], motion: fixed}\n"
+            "  - {name: cube, geometry: {box: {size: [0.006, 0.006, 0.006]}}, material: N42,\n"
+            "     magnetization: [0, 0, 1], position: [0.003, 0, 0.025], orientation: {axis: [1, 0, 0], angle: 40}}\n"
+            "  - {name: dropped, geometry: {box: {size: [0.006, 0.006, 0.006]}}, material: N42,\n"
+            "     magnetization: [0, 0, 1], position: [0.001, 0.001, 0.3]}\n");
+    c.write("constant/rigidBody.yaml", "type: ODE\ngravity: [0, 0, -9.81]\nground: {height: 0}\n"
+                                       "contact: {friction: 0.5, restitution: 0.1}\n" + sleep);
+}
+
+struct Row {
+    double z = 0, speed = 0;
+    int asleep = -1;
+};
+
+// The last bodies.csv row of each body.
+std::map<std::string, Row> lastRows(const std::filesystem::path& csv) {
+    std::istringstream in(slurp(csv));
+    std::string line;
+    std::getline(in, line);
+    const bool sleepColumn = line.find(",asleep") != std::string::npos;
+    std::map<std::string, Row> out;
+    while (std::getline(in, line)) {
+        std::vector<std::string> f;
+        std::stringstream ss(line);
+        for (std::string x; std::getline(ss, x, ',');) f.push_back(x);
+        Row r;
+        r.z = std::stod(f[4]);
+        r.speed = std::hypot(std::stod(f[9]), std::stod(f[10]), std::stod(f[11]));
+        if (sleepColumn) r.asleep = std::stoi(f[21]);
+        out[f[1]] = r;
+    }
+    return out;
+}
+
+} // namespace
+
+TEST_CASE("sleeping: a resting magnet sleeps, a dropped one wakes it, both end asleep on the stack", "[sleeping]") {
+    magtest::TempCase awake, sleeping;
+    stack(awake, 0.4, "");
+    stack(sleeping, 0.4, "sleep: {}\n");
+    REQUIRE(runIn(awake.dir(), "log") == 0);
+    REQUIRE(runIn(sleeping.dir(), "log") == 0);
+    const std::string log = slurp(sleeping.path("log"));
+    INFO(log);
+    // In this order: the cube sleeps, is woken by the approach, the stack sleeps.
+    const auto first = log.find("asleep: cube\n");
+    const auto woken = log.find("woken: cube (the magnetic wrench on 'cube' changed)");
+    const auto both = log.find("asleep: cube, dropped");
+    REQUIRE(first != std::string::npos);
+    REQUIRE(woken != std::string::npos);
+    REQUIRE(both != std::string::npos);
+    CHECK(first < woken);
+    CHECK(woken < both);
+    // Pairs of the sleeping cube and the fixed disc were kept, not evaluated.
+    std::smatch m;
+    REQUIRE(std::regex_search(log, m, std::regex("pairs evaluated ([0-9]+), kept from their last wrench ([0-9]+)")));
+    CHECK(std::stol(m[2]) > 100);
+    CHECK_THAT(log, Contains("0 warning(s)"));  // the audit: no energy rise, no large step
+    // The outcome is the stack the run without sleeping ends in: heights to
+    // the contact solver's softness (ODE's surface layer and cfm: ~1 um).
+    const auto a = lastRows(awake.path("postProcessing/bodies.csv"));
+    const auto s = lastRows(sleeping.path("postProcessing/bodies.csv"));
+    for (const char* name : {"cube", "dropped"}) {
+        INFO(name);
+        CHECK(s.at(name).asleep == 1);
+        CHECK(s.at(name).speed == 0.0);
+        CHECK(a.at(name).speed < 1e-3);
+        CHECK(s.at(name).z == Approx(a.at(name).z).margin(1e-5));
+    }
+    CHECK(s.at("cube").z == Approx(0.007).margin(1e-5));     // on the disc (4 mm + 3 mm)
+    CHECK(s.at("dropped").z == Approx(0.013).margin(1e-5));  // on the cube
+}
+
+TEST_CASE("sleeping: a restart continues bit for bit, with bodies asleep and while they wake", "[sleeping][restart]") {
+    // 0.1 s: the cube sleeps (its cached pairs are in sleep.yaml); 0.25 s:
+    // after the wake, the dropped cube settling.
+    for (const double split : {0.1, 0.25}) {
+        INFO("split " << split);
+        magtest::TempCase whole, parts;
+        stack(whole, 0.4, "sleep: {}\n");
+        stack(parts, split, "sleep: {}\n");
+        REQUIRE(runIn(whole.dir(), "log") == 0);
+        REQUIRE(runIn(parts.dir(), "log") == 0);
+        CHECK(std::filesystem::exists(parts.path(mag::timeName(split) + "/sleep.yaml")));
+        stack(parts, 0.4, "sleep: {}\n", "startFrom: latestTime\n");
+        REQUIRE(runIn(parts.dir(), "log.restart") == 0);
+        CHECK_THAT(slurp(parts.path("log.restart")), Contains("Restarting from"));
+        CHECK(slurp(whole.path("0.4/bodies.yaml")) == slurp(parts.path("0.4/bodies.yaml")));
+        CHECK(slurp(whole.path("0.4/sleep.yaml")) == slurp(parts.path("0.4/sleep.yaml")));
+        CHECK(slurp(whole.path("postProcessing/bodies.csv")) == slurp(parts.path("postProcessing/bodies.csv")));
+    }
+}
+
+TEST_CASE("sleeping: bad settings are errors naming the key", "[sleeping][badInput]") {
+    magtest::TempCase c;
+    stack(c, 0.01, "sleep: {enabled: true, time: -1}\n");
+    REQUIRE(runIn(c.dir(), "log") == 1);
+    CHECK_THAT(slurp(c.path("log")), Contains("rigidBody.yaml:5:") && Contains("sleep.time: must be >= 0"));
+    stack(c, 0.01, "sleep: {enabled: true, speeed: 1}\n");
+    REQUIRE(runIn(c.dir(), "log") == 1);
+    CHECK_THAT(slurp(c.path("log")), Contains("unknown key 'speeed'") && Contains("speed"));
+}
