@@ -38,7 +38,9 @@ std::string joined(const std::vector<std::string>& items) {
     return text;
 }
 
-bool ownReader(const std::string& extension) { return extension == ".ply" || extension == ".off"; }
+bool ownReader(const std::string& extension) {
+    return extension == ".ply" || extension == ".off" || extension == ".obj";
+}
 
 } // namespace
 
@@ -47,6 +49,7 @@ std::vector<std::string> meshFileExtensions() { return {".stl", ".obj", ".ply", 
 ParsedMesh parseMeshBytes(std::string_view bytes, const std::string& name, const std::string& extension) {
     if (extension == ".ply") return parsePly(bytes, name);
     if (extension == ".off") return parseOff(bytes, name);
+    if (extension == ".obj") return parseObj(bytes, name);
     return parseWithAssimp(bytes, name, extension);
 }
 

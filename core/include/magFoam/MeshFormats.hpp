@@ -1,6 +1,6 @@
 // Parsers of the mesh file formats, from the bytes of a file (MeshIO.hpp reads
-// the file and welds the result). PLY and OFF are read by magFoam's own
-// validating readers; STL, OBJ and the other formats by assimp, whose result is
+// the file and welds the result). PLY, OFF and OBJ are read by magFoam's own
+// validating readers; STL and the other formats by assimp, whose result is
 // validated (counts, indices, finite coordinates) before use.
 //
 // Every malformed file is an InputError naming the file and the line (text
@@ -34,10 +34,16 @@ ParsedMesh parsePly(std::string_view bytes, const std::string& name);
 // '#' comments.
 ParsedMesh parseOff(std::string_view bytes, const std::string& name);
 
+// Wavefront OBJ, text: `v` and `f` (corners v, v/vt, v//vn, v/vt/vn; negative
+// indices count back from the last vertex); `l` and `p` are counted as ignored,
+// the other statements of the format (vt, vn, g, o, s, usemtl, ...) skipped,
+// anything else an error; '#' comments.
+ParsedMesh parseObj(std::string_view bytes, const std::string& name);
+
 // Any other format assimp reads; `extension` (".stl", ".obj", ...) picks the importer.
 ParsedMesh parseWithAssimp(std::string_view bytes, const std::string& name, const std::string& extension);
 
-// By extension: .ply and .off our own readers, everything else assimp.
+// By extension: .ply, .off and .obj our own readers, everything else assimp.
 ParsedMesh parseMeshBytes(std::string_view bytes, const std::string& name, const std::string& extension);
 
 } // namespace mag
