@@ -2,6 +2,7 @@
 // when the fixture goes out of scope.
 #pragma once
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <cstdlib>
@@ -27,6 +28,34 @@ inline std::string slurp(const std::filesystem::path& p) {
     std::stringstream ss;
     ss << in.rdbuf();
     return ss.str();
+}
+
+// The totals of postProcessing/energy.csv (time,kinetic,gravitational,
+// magnetic,total): first and last total, the highest total and the peak
+// kinetic energy (J), and the number of rows.
+struct EnergyRecord {
+    double first = 0, last = 0, highest = -1e300, peakKinetic = 0;
+    int rows = 0;
+    double drift() const { return (last - first) / peakKinetic; }        // of the peak kinetic energy
+    double excursion() const { return (highest - first) / peakKinetic; } // the same, highest above the start
+};
+inline EnergyRecord readEnergyCsv(const std::filesystem::path& file) {
+    std::istringstream csv(slurp(file));
+    std::string line;
+    std::getline(csv, line);  // the header
+    EnergyRecord r;
+    while (std::getline(csv, line)) {
+        double v[5];
+        std::istringstream row(line);
+        for (double& x : v) {
+            std::string cell;
+            std::getline(row, cell, ',');
+            x = std::stod(cell);
+        }
+        if (r.rows++ == 0) r.first = v[4];
+        r.last = v[4], r.highest = std::max(r.highest, v[4]), r.peakKinetic = std::max(r.peakKinetic, v[1]);
+    }
+    return r;
 }
 
 class TempCase {

@@ -179,25 +179,9 @@ double flyByDrift(const std::string& material, const std::string& schemes, const
     c.write("constant/rigidBody.yaml", "type: free\ngravity: [0, 0, 0]\n");
     const std::string cmd = "cd '" + c.dir().string() + "' && '" + magtest::appPath("magFoam") + "' > log 2>&1";
     REQUIRE(WEXITSTATUS(std::system(cmd.c_str())) == 0);
-    std::istringstream csv(magtest::slurp(c.path("postProcessing/energy.csv")));
-    std::string line;
-    std::getline(csv, line); // time,kinetic,gravitational,magnetic,total
-    double first = 0, last = 0, peak = 0;
-    bool haveFirst = false;
-    int rows = 0;
-    while (std::getline(csv, line)) {
-        double v[5];
-        std::istringstream row(line);
-        for (double& x : v) {
-            std::string cell;
-            std::getline(row, cell, ',');
-            x = std::stod(cell);
-        }
-        if (!haveFirst) first = v[4], haveFirst = true;
-        last = v[4], peak = std::max(peak, v[1]), ++rows;
-    }
-    REQUIRE(rows > 100);
-    return (last - first) / peak;
+    const magtest::EnergyRecord e = magtest::readEnergyCsv(c.path("postProcessing/energy.csv"));
+    REQUIRE(e.rows > 100);
+    return e.drift();
 }
 
 } // namespace

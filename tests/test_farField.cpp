@@ -103,8 +103,8 @@ TEST_CASE("dipole tier: default ratio 8, EDM agrees, angular momentum conserved"
     auto hybrid = field("{type: hybrid}");
     auto edm = field("{type: EDM, n: 4}");
     {
-        // 7.9 (R1 + R2): EDM far tier; 8.1: dipole.
-        const auto [a, b] = pairAt(cube, cube, 7.9);
+        // 5.9 (R1 + R2): EDM far tier (below the dipole band, (6, 8] (R1 + R2)); 8.1: dipole.
+        const auto [a, b] = pairAt(cube, cube, 5.9);
         const mag::Wrench w = hybrid->interaction(a, b);
         CHECK(w.force == field("{type: EDM, n: 2}")->interaction(a, b).force); // the default far model
         CHECK(pairCounts(*hybrid) == PairCounts{0, 0, 1});
@@ -233,11 +233,12 @@ TEST_CASE("dipoleTolerance: each shape's reach keeps its dipole pairs within the
             CHECK(e.torque <= tol);
         }
     }
-    // The hybrid uses it: just beyond the two reaches a dipole pair, just inside not.
+    // The hybrid uses it: just beyond the two reaches a dipole pair, below the
+    // dipole band (0.75 of them) a far one.
     auto hybrid = field("{type: hybrid, dipoleTolerance: 1e-3}");
     const double reach = 2 * mag::dipoleReachFor(*cube, 1e-3);
     const Body s = magnet("s", cube, Vec3::Zero(), Vec3(0, 0, 1));
-    for (double f : {0.999, 1.001}) {
+    for (double f : {0.749, 1.001}) {
         const Body t = magnet("t", cube, Vec3(0.2, 0.3, 0.9).normalized() * f * reach, Vec3(1, 0, 1));
         (void)hybrid->interaction(s, t);
     }

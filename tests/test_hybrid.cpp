@@ -232,12 +232,13 @@ TEST_CASE("GJK distance equals the brute-force polytope distance", "[hybrid][gjk
 TEST_CASE("hybrid gjk switch sees elongated bodies as far where bounding spheres cannot", "[hybrid][gjk]") {
     // Two parallel 10 cm x 5 mm x 5 mm bars, 2 cm apart (hull gap 1.5 cm): their bounding
     // spheres (R = 5 cm) overlap, so boundingSphere says near; GJK says far at threshold
-    // 0.2 (1.5 cm >= 0.2 x 5 cm) and near at threshold 0.4 (1.5 cm < 2 cm).
+    // 0.2 (1.5 cm >= 0.2 x 5 cm) and near at threshold 0.4 (1.5 cm < 2 cm). The
+    // far case without the blending band (with it, 1 to 2.25 cm is the band).
     const auto bar = boxShape(Vec3(0.1, 0.005, 0.005));
     const Body a = magnet("a", bar, Vec3::Zero(), Vec3::UnitZ());
     const Body b = magnet("b", bar, Vec3(0, 0.02, 0), Vec3::UnitZ());
     auto sphere = field("type: hybrid\nswitch: {type: boundingSphere, threshold: 0.2}\n");
-    auto gjkFar = field("type: hybrid\nswitch: {type: gjk, threshold: 0.2}\n");
+    auto gjkFar = field("type: hybrid\nswitch: {type: gjk, threshold: 0.2, band: 0}\n");
     auto gjkNear = field("type: hybrid\nswitch: {type: gjk, threshold: 0.4}\n");
     sphere->interaction(a, b);
     gjkFar->interaction(a, b);
