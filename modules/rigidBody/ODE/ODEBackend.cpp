@@ -561,7 +561,7 @@ private:
         double worst = 0;
         for (std::size_t i = 0; i < entries_.size(); ++i) {
             const Entry& e = entries_[i];
-            if (!e.body) continue;
+            if (!e.body || !dBodyIsEnabled(e.body)) continue;  // fixed, or sleeping: it does not travel
             const double r = e.collision->scale;
             const dReal* v = dBodyGetLinearVel(e.body);
             const dReal* w = dBodyGetAngularVel(e.body);
@@ -579,6 +579,8 @@ private:
     void collide(dGeomID g1, dGeomID g2) {
         dBodyID b1 = dGeomGetBody(g1), b2 = dGeomGetBody(g2);
         if (!b1 && !b2) return; // fixed-fixed, fixed-ground
+        // Sleeping (disabled) bodies among themselves or on fixed ones: nothing moves.
+        if ((!b1 || !dBodyIsEnabled(b1)) && (!b2 || !dBodyIsEnabled(b2))) return;
         const int n = dCollide(g1, g2, kCapacity, &buffer_[0].geom, sizeof(dContact));
         if (n <= 0) return;
         stats_.contactsFound += n;
