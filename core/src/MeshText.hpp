@@ -5,9 +5,18 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <string_view>
 
 namespace mag::meshText {
+
+// A token for a message: at most 40 characters, unprintable bytes as '?', quoted.
+inline std::string quoted(std::string_view text) {
+    std::string s(text.substr(0, 40));
+    for (char& c : s)
+        if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';
+    return "'" + s + (text.size() > 40 ? "...'" : "'");
+}
 
 inline bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v'; }
 

@@ -21,12 +21,7 @@ namespace {
 using meshText::parseInteger;
 using meshText::parseNumber;
 
-std::string quoted(std::string_view text) {
-    std::string s(text.substr(0, 40));
-    for (char& c : s)
-        if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';
-    return "'" + s + (text.size() > 40 ? "...'" : "'");
-}
+using meshText::quoted;
 
 // Statements of the OBJ specification that carry nothing a closed surface
 // needs: read past. A statement outside the specification is an error.

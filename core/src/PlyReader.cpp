@@ -81,12 +81,7 @@ std::string numberText(double x) {
     return meshDetail::formatNumber(x);
 }
 
-std::string quoted(std::string_view text) {
-    std::string s(text.substr(0, 40));
-    for (char& c : s)
-        if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';
-    return "'" + s + (text.size() > 40 ? "...'" : "'");
-}
+using meshText::quoted;
 
 class PlyReader {
 public:
