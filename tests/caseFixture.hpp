@@ -9,6 +9,7 @@
 #include <random>
 #include <sstream>
 #include <stdexcept>
+#include <sys/wait.h>
 #include <string>
 
 namespace magtest {
@@ -28,6 +29,16 @@ inline std::string slurp(const std::filesystem::path& p) {
     std::stringstream ss;
     ss << in.rdbuf();
     return ss.str();
+}
+
+// Runs one of the build's apps (bin/<app>, then `arguments`) in `dir` with its
+// output, stdout and stderr, in dir/<log>; the exit status.
+inline int runApp(const std::filesystem::path& dir, const std::string& app, const std::string& log = "log",
+                  const std::string& arguments = "") {
+    const std::string cmd = "cd '" + dir.string() + "' && '" + appPath(app) + "'" +
+                            (arguments.empty() ? "" : " " + arguments) + " > '" + log + "' 2>&1";
+    const int status = std::system(cmd.c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
 // The totals of postProcessing/energy.csv (time,kinetic,gravitational,

@@ -172,8 +172,7 @@ TEST_CASE("a compass needle in a uniform applied field swings with period 2 pi s
     oneCube(c, "type: uniform\nB: [0, 0, 0.001]\n", "[0, 0, 0]", ", orientation: {axis: [0, 1, 0], angle: 5}");
     c.write("system/controlDict.yaml", "endTime: 0.2\ndeltaT: 0.0001\nwriteInterval: 0.0001\n");
     c.write("constant/rigidBody.yaml", "type: free\n");
-    const std::string cmd = "cd '" + c.dir().string() + "' && " + magtest::appPath("magFoam") + " > log 2>&1";
-    REQUIRE(WEXITSTATUS(std::system(cmd.c_str())) == 0);
+    REQUIRE(magtest::runApp(c.dir(), "magFoam") == 0);
     std::ifstream csv(c.path("postProcessing/bodies.csv"));
     std::string line;
     std::getline(csv, line);

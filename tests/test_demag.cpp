@@ -177,8 +177,7 @@ double flyByDrift(const std::string& material, const std::string& schemes, const
             "  - {name: rod, geometry: {box: {size: [0.004, 0.004, 0.012]}}, material: steel,\n"
             "     position: [-0.04, 0.01, 0], velocity: [3, 0, 0]" + spin + "}\n");
     c.write("constant/rigidBody.yaml", "type: free\ngravity: [0, 0, 0]\n");
-    const std::string cmd = "cd '" + c.dir().string() + "' && '" + magtest::appPath("magFoam") + "' > log 2>&1";
-    REQUIRE(WEXITSTATUS(std::system(cmd.c_str())) == 0);
+    REQUIRE(magtest::runApp(c.dir(), "magFoam") == 0);
     const magtest::EnergyRecord e = magtest::readEnergyCsv(c.path("postProcessing/energy.csv"));
     REQUIRE(e.rows > 100);
     return e.drift();

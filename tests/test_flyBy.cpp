@@ -69,8 +69,7 @@ FlyBy flyBy(const std::string& field, double deltaT = 2e-5) {
             "  - {name: rod, geometry: {box: {size: [0.004, 0.004, 0.012]}}, material: N42, magnetization: [1, 0, 0],\n"
             "     position: [-0.15, 0.016, 0], velocity: [5, 0, 0]}\n");
     c.write("constant/rigidBody.yaml", "type: free\ngravity: [0, 0, 0]\n");
-    const std::string cmd = "cd '" + c.dir().string() + "' && '" + magtest::appPath("magFoam") + "' > log 2>&1";
-    REQUIRE(WEXITSTATUS(std::system(cmd.c_str())) == 0);
+    REQUIRE(magtest::runApp(c.dir(), "magFoam") == 0);
 
     FlyBy r;
     const magtest::EnergyRecord e = magtest::readEnergyCsv(c.path("postProcessing/energy.csv"));

@@ -41,8 +41,7 @@ void cubeCase(magtest::TempCase& c, const std::string& sets) {
 using magtest::slurp;
 
 int runMagField(const magtest::TempCase& c, std::string& log) {
-    const std::string cmd = "cd '" + c.dir().string() + "' && '" + magtest::appPath("magField") + "' > log 2>&1";
-    const int rc = WEXITSTATUS(std::system(cmd.c_str()));
+    const int rc = magtest::runApp(c.dir(), "magField");
     log = slurp(c.path("log"));
     return rc;
 }

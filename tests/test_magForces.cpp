@@ -23,8 +23,7 @@ using mag::Vec3;
 using magtest::slurp;
 
 int runMagForces(const magtest::TempCase& c, std::string& log) {
-    const std::string cmd = "cd '" + c.dir().string() + "' && '" + magtest::appPath("magForces") + "' > log 2>&1";
-    const int rc = WEXITSTATUS(std::system(cmd.c_str()));
+    const int rc = magtest::runApp(c.dir(), "magForces");
     log = slurp(c.path("log"));
     return rc;
 }

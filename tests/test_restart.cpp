@@ -27,10 +27,7 @@ using mag::Vec3;
 
 namespace {
 
-int runIn(const std::filesystem::path& dir, const std::string& log) {
-    const std::string cmd = "cd '" + dir.string() + "' && '" + magtest::appPath("magFoam") + "' > " + log + " 2>&1";
-    return WEXITSTATUS(std::system(cmd.c_str()));
-}
+int runIn(const std::filesystem::path& dir, const std::string& log) { return magtest::runApp(dir, "magFoam", log); }
 
 using magtest::slurp;
 

@@ -23,10 +23,7 @@ using magtest::slurp;
 
 namespace {
 
-int runIn(const std::filesystem::path& dir, const std::string& log) {
-    const std::string cmd = "cd '" + dir.string() + "' && '" + magtest::appPath("magFoam") + "' > " + log + " 2>&1";
-    return WEXITSTATUS(std::system(cmd.c_str()));
-}
+int runIn(const std::filesystem::path& dir, const std::string& log) { return magtest::runApp(dir, "magFoam", log); }
 
 // The stack scene; `sleep`: the rigidBody.yaml line (empty: no sleeping).
 void stack(magtest::TempCase& c, double endTime, const std::string& sleep, const std::string& extra = "") {

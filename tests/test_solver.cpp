@@ -19,10 +19,8 @@ namespace {
 
 std::string app(const std::string& name) { return magtest::appPath(name); }
 
-int runIn(const std::filesystem::path& dir, const std::string& cmd) {
-    const std::string full = "cd '" + dir.string() + "' && " + cmd + " > log.run 2>&1";
-    return WEXITSTATUS(std::system(full.c_str()));
-}
+// magFoam in `dir`, its output in log.run.
+int runFoam(const std::filesystem::path& dir) { return magtest::runApp(dir, "magFoam", "log.run"); }
 
 using magtest::slurp;
 
@@ -60,11 +58,11 @@ TEST_CASE("restart: 0->T equals 0->T/2 plus a restart to T", "[solver]") {
         magtest::TempCase whole, split;
         fallingCubes(whole, backend, 0.04);
         fallingCubes(split, backend, 0.02);
-        REQUIRE(runIn(whole.dir(), app("magFoam")) == 0);
-        REQUIRE(runIn(split.dir(), app("magFoam")) == 0);
+        REQUIRE(runFoam(whole.dir()) == 0);
+        REQUIRE(runFoam(split.dir()) == 0);
         split.write("system/controlDict.yaml", "endTime: 0.04\ndeltaT: 0.001\nwriteInterval: 0.005\n"
                                                "startFrom: latestTime\n");
-        REQUIRE(runIn(split.dir(), app("magFoam")) == 0);
+        REQUIRE(runFoam(split.dir()) == 0);
         const State a = finalState(whole.dir()), b = finalState(split.dir());
         REQUIRE(a.values.size() == b.values.size());
         // The restart file holds 17 significant digits, so the continued run
@@ -80,7 +78,7 @@ TEST_CASE("restart: 0->T equals 0->T/2 plus a restart to T", "[solver]") {
 TEST_CASE("VTK output: valid XML series with consistent counts", "[solver]") {
     magtest::TempCase c;
     fallingCubes(c, "free", 0.01);
-    REQUIRE(runIn(c.dir(), app("magFoam")) == 0);
+    REQUIRE(runFoam(c.dir()) == 0);
     const std::string pvd = slurp(c.path("VTK/bodies.pvd"));
     const std::regex dataset("file=\"([^\"]+)\"");
     int files = 0;
@@ -154,7 +152,7 @@ TEST_CASE("VTK surfaces: per-face B, Bn, traction and velocity that add up to th
             "  - {name: upper, geometry: {sphere: {radius: 0.005, subdivisions: 3}}, material: N,\n"
             "     magnetization: [0, 0, 1], position: [0.002, 0, 0.015], velocity: [0.1, 0, 0],\n"
             "     angularVelocity: [0, 0, 5]}\n");
-    REQUIRE(runIn(c.dir(), app("magFoam")) == 0);
+    REQUIRE(runFoam(c.dir()) == 0);
     const std::string vtp = slurp(c.path("VTK/bodies_1.vtp"));
     const auto body = vtkArray(vtp, "body"), traction = vtkArray(vtp, "traction"), B = vtkArray(vtp, "B");
     const auto Bn = vtkArray(vtp, "Bn"), magB = vtkArray(vtp, "magB"), V = vtkArray(vtp, "velocity");
@@ -232,7 +230,7 @@ TEST_CASE("a non-finite wrench stops the run naming the body and step", "[solver
     magtest::TempCase c;
     fallingCubes(c, "free", 0.01, "libs: [" + magtest::testPluginDir() + "/libmagTestField.so]\n");
     c.write("system/magSchemes.yaml", "field: {type: testUniformField, B0: [0, 0, 0], nanForce: true}\n");
-    const int rc = runIn(c.dir(), app("magFoam"));
+    const int rc = runFoam(c.dir());
     CHECK(rc == 1);
     const std::string log = slurp(c.path("log.run"));
     // The field's NaN force is there from the start: the first write refuses it
@@ -251,7 +249,7 @@ TEST_CASE("a wrench that turns non-finite mid-run: the last good state is writte
     // The top cube falls freely (no magnetic force); after 6 steps of 1 ms it
     // is faster than 0.05 m/s and the field's force on it turns NaN.
     c.write("system/magSchemes.yaml", "field: {type: testUniformField, B0: [0, 0, 0], nanAboveSpeed: 0.05}\n");
-    const int rc = runIn(c.dir(), app("magFoam"));
+    const int rc = runFoam(c.dir());
     CHECK(rc == 1);
     const std::string log = slurp(c.path("log.run"));
     CHECK_THAT(log, Catch::Matchers::Contains("non-finite state or wrench of body 'top' in step 7") &&

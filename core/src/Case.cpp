@@ -154,6 +154,7 @@ Case Case::read(const std::filesystem::path& dir, const std::filesystem::path& s
         c.magSchemes_ = Dict::fromFile(file);
     }
     c.rigidBody_ = readOptional(dir / "constant/rigidBody.yaml");
+    if (c.rigidBody_) c.sleep_ = SleepSettings::read(*c.rigidBody_);
     c.appliedField_ = readOptional(dir / "constant/appliedField.yaml");
 
     const auto materialsFile = dir / "constant/materials.yaml";

@@ -56,23 +56,6 @@ Wrench readWrench(const Dict& d) {
 
 } // namespace
 
-SleepSettings SleepSettings::read(const Dict& rigidBody) {
-    SleepSettings s;
-    if (!rigidBody.has("sleep")) return s;
-    const Dict d = rigidBody.sub("sleep");
-    s.enabled = d.get<bool>("enabled", true);
-    s.speed = d.get<double>("speed", s.speed);
-    s.time = d.get<double>("time", s.time);
-    s.wrenchChange = d.get<double>("wrenchChange", s.wrenchChange);
-    s.margin = d.get<double>("margin", s.margin);
-    if (!(s.speed > 0)) d.fail("speed", "must be > 0 (m/s: a body is calm below it)");
-    if (!(s.time >= 0)) d.fail("time", "must be >= 0 (seconds calm before sleeping)");
-    if (!(s.wrenchChange > 0)) d.fail("wrenchChange", "must be > 0 (a relative change of the magnetic wrench)");
-    if (!(s.margin >= 0)) d.fail("margin", "must be >= 0 (a fraction of the smaller bounding radius)");
-    d.reportUnused();
-    return s;
-}
-
 Sleeping::Sleeping(const SleepSettings& settings, const std::vector<Body>& bodies, const Vec3& gravity,
                    bool timeDependentField)
     : settings_(settings), asleep_(bodies.size(), 0), calm_(bodies.size()), forceScale_(bodies.size(), 0),
@@ -86,6 +69,17 @@ Sleeping::Sleeping(const SleepSettings& settings, const std::vector<Body>& bodie
         forceScale_[i] = bodies[i].mass() * gravity.norm();
         torqueScale_[i] = forceScale_[i] * bodies[i].shape->boundingRadius;
     }
+}
+
+const std::vector<Body>& Sleeping::awakeView(const std::vector<Body>& bodies) {
+    // Copied whole once (shapes, materials, names); then only the state and
+    // the flag are refreshed: no allocation per step.
+    if (view_.size() != bodies.size()) view_ = bodies;
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        static_cast<BodyState&>(view_[i]) = bodies[i];
+        view_[i].fixed = bodies[i].fixed || asleep_[i];
+    }
+    return view_;
 }
 
 bool Sleeping::anyAsleep() const { return std::find(asleep_.begin(), asleep_.end(), 1) != asleep_.end(); }
@@ -104,10 +98,7 @@ MagneticSystem::Step Sleeping::magnetic(const MagneticSystem& magnets, std::vect
     MagneticSystem::Step s;
     s.induction = magnets.converge(bodies);
     // Pairs with an awake body: sleeping bodies count as fixed.
-    std::vector<Body> view = bodies;
-    for (std::size_t i = 0; i < view.size(); ++i)
-        if (asleep_[i]) view[i].fixed = true;
-    s.wrenches = magnets.wrenches(view, true);
+    s.wrenches = magnets.wrenches(awakeView(bodies), true);
     // Pairs among sleeping and fixed bodies, once per change of who sleeps:
     // the awake bodies take no part (unmagnetized in this view).
     if (!frozenValid_) {
@@ -131,16 +122,30 @@ MagneticSystem::Step Sleeping::magnetic(const MagneticSystem& magnets, std::vect
 }
 
 std::vector<std::vector<std::size_t>> Sleeping::islands(const std::vector<Body>& bodies) const {
+    // Sort and sweep along x: a pair is tested only when the two reaches
+    // overlap in x, so a scene of spread-out bodies costs n log n, not n^2.
     const std::size_t n = bodies.size();
+    auto reach = [&](std::size_t i) {
+        const double r = bodies[i].shape->boundingRadius;
+        return r + 0.5 * settings_.margin * r;
+    };
+    std::vector<std::size_t> order;
+    for (std::size_t i = 0; i < n; ++i)
+        if (!bodies[i].fixed) order.push_back(i);
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        const double xa = bodies[a].position.x() - reach(a), xb = bodies[b].position.x() - reach(b);
+        return xa < xb || (xa == xb && a < b);
+    });
     Sets sets(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        if (bodies[i].fixed) continue;
-        const double ri = bodies[i].shape->boundingRadius;
-        for (std::size_t j = i + 1; j < n; ++j) {
-            if (bodies[j].fixed) continue;
+    for (std::size_t k = 0; k < order.size(); ++k) {
+        const std::size_t i = order[k];
+        const double ri = bodies[i].shape->boundingRadius, right = bodies[i].position.x() + reach(i);
+        for (std::size_t l = k + 1; l < order.size(); ++l) {
+            const std::size_t j = order[l];
+            if (bodies[j].position.x() - reach(j) > right) break;
             const double rj = bodies[j].shape->boundingRadius;
-            const double reach = ri + rj + settings_.margin * std::min(ri, rj);
-            if ((bodies[i].position - bodies[j].position).squaredNorm() < reach * reach) sets.unite(i, j);
+            const double d = ri + rj + settings_.margin * std::min(ri, rj);
+            if ((bodies[i].position - bodies[j].position).squaredNorm() < d * d) sets.unite(i, j);
         }
     }
     std::vector<std::vector<std::size_t>> byRoot(n), out;

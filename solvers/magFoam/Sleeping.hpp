@@ -20,7 +20,8 @@
 // With an applied field that changes in time nothing sleeps.
 //
 // Settings: constant/rigidBody.yaml `sleep: {enabled, speed, time,
-// wrenchChange, margin}` (docs/case-reference.md#rigidbody). The state (who
+// wrenchChange, margin}` (SleepSettings.hpp, read with the case;
+// docs/case-reference.md#rigidbody). The state (who
 // sleeps, calm times, reference wrenches) is written to <time>/sleep.yaml so
 // that a restart continues bit for bit.
 #pragma once
@@ -29,6 +30,7 @@
 #include <magFoam/Dictionary.hpp>
 #include <magFoam/MagneticSystem.hpp>
 #include <magFoam/RigidBodyBackend.hpp>
+#include <magFoam/SleepSettings.hpp>
 #include <magFoam/Wrench.hpp>
 
 #include <iosfwd>
@@ -36,18 +38,6 @@
 #include <vector>
 
 namespace mag::solver {
-
-struct SleepSettings {
-    bool enabled = false;
-    double speed = 1e-3;         // m/s: calm below (centre and surface)
-    double time = 0.02;          // s: calm this long before sleeping
-    double wrenchChange = 1e-3;  // relative change of the magnetic wrench (and magnetization)
-    double margin = 0.1;         // islands: bounding spheres closer than margin x the smaller radius
-
-    // `sleep:` of constant/rigidBody.yaml (absent: disabled); the keys are
-    // marked used, so the backend does not take them for its own.
-    static SleepSettings read(const Dict& rigidBody);
-};
 
 class Sleeping {
 public:
@@ -58,6 +48,9 @@ public:
     // Who sleeps now (one flag per body), for bodies.csv.
     const std::vector<char>& asleep() const { return asleep_; }
     bool anyAsleep() const;
+    // The bodies with the sleeping ones marked fixed (what the awake part of
+    // a step sees: the pairs to evaluate, the adaptive step's proposal).
+    const std::vector<Body>& awakeView(const std::vector<Body>& bodies);
 
     // The magnetic part of a step: MagneticSystem::step when nobody sleeps;
     // otherwise converge, then the pairs with an awake body evaluated and the
@@ -95,6 +88,7 @@ private:
     std::vector<char> asleep_;
     std::vector<Calm> calm_;
     std::vector<double> forceScale_, torqueScale_;  // m g and m g R (N, N m): a floor for the wrench tests
+    std::vector<Body> view_;      // awakeView's bodies, kept between steps
     std::vector<Wrench> frozen_;  // cached pairs among sleeping and fixed bodies
     bool frozenValid_ = false;
     bool changed_ = false;        // who sleeps changed: tell the backend

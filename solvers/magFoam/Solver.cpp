@@ -96,8 +96,6 @@ constexpr double kMaxGrowth = 1.2;
 void run(Case& c, const RunOptions& options) {
     const int threads = mag::threads();
     MagneticSystem magnets(c);
-    // The solver's own keys of rigidBody.yaml first: the backend takes the rest.
-    const SleepSettings sleepSettings = SleepSettings::read(c.rigidBody());
     std::unique_ptr<RigidBodyBackend> backend = RigidBodyBackend::New(c.rigidBody());
     const Vec3 gravity = c.rigidBody().get<Vec3>("gravity", Vec3::Zero());
     const bool soft = c.hasSoftBodies();
@@ -111,7 +109,7 @@ void run(Case& c, const RunOptions& options) {
     if (!start.folder)
         warnOverlaps(bodies, (c.dir() / "constant" / "bodies.yaml").string(),
                      "a contact solver pushes them apart at the start, adding kinetic energy");
-    Sleeping sleeping(sleepSettings, bodies, gravity, magnets.appliedField().timeDependent());
+    Sleeping sleeping(c.sleep(), bodies, gravity, magnets.appliedField().timeDependent());
     if (sleeping.enabled() && !backend->canSleep())
         throw InputError((c.dir() / "constant/rigidBody.yaml").string() + ": sleep: the rigid-body backend '" +
                          backend->describe() + "' cannot hold bodies still; remove sleep: or use ODE or free");
@@ -169,10 +167,7 @@ void run(Case& c, const RunOptions& options) {
         if (loop.adaptive()) {
             double stable = 0.0;
             if (sleeping.anyAsleep()) {
-                std::vector<Body> awake = bodies;
-                for (std::size_t i = 0; i < awake.size(); ++i)
-                    if (sleeping.asleep()[i]) awake[i].fixed = true;
-                stable = audit.stableDeltaT(awake, wrenches);
+                stable = audit.stableDeltaT(sleeping.awakeView(bodies), wrenches);
             } else {
                 stable = audit.stableDeltaT(bodies, wrenches);
             }

@@ -15,6 +15,7 @@
 #include "magFoam/ControlDict.hpp"
 #include "magFoam/Dictionary.hpp"
 #include "magFoam/Material.hpp"
+#include "magFoam/SleepSettings.hpp"
 
 #include <filesystem>
 #include <map>
@@ -36,6 +37,8 @@ public:
     const ControlDict& control() const;
     const Dict& magSchemes() const;
     const Dict& rigidBody() const;
+    // rigidBody.yaml `sleep:` (disabled without the file or the key).
+    const SleepSettings& sleep() const { return sleep_; }
     // magSchemes.yaml `field:` and `induction:` (default {type: none}).
     Dict fieldDict() const;
     Dict inductionDict() const;
@@ -54,6 +57,7 @@ private:
     std::filesystem::path dir_;
     std::optional<ControlDict> control_;
     std::optional<Dict> magSchemes_, rigidBody_, appliedField_;
+    SleepSettings sleep_;
     std::map<std::string, Material> materials_;
     std::vector<Body> bodies_;
 };

@@ -18,8 +18,6 @@
 #include <magFoam/MagneticSystem.hpp>
 #include <magFoam/RigidBodyBackend.hpp>
 
-#include <Sleeping.hpp>
-
 #include <chrono>
 #include <limits>
 
@@ -41,9 +39,6 @@ void tableTwoStudy(const Dict& study, const std::filesystem::path& caseDir) {
     for (const std::string& name : cases) {
         const Case c = Case::read(caseDir / name);
         const MagneticSystem magnets(c);
-        // The solver's own key of rigidBody.yaml, checked and set aside: the
-        // study times the first steps, where nothing sleeps yet.
-        (void)solver::SleepSettings::read(c.rigidBody());
         const double dt = c.control().deltaT;
         // Samples: on every body that MBM would sample (near pairs), per body.
         std::size_t samples = 0;
