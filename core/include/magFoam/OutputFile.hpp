@@ -43,7 +43,6 @@ public:
     ~AppendedFile();
 
     bool isOpen() const { return fd_ >= 0; }
-    const std::filesystem::path& path() const { return path_; }
     void append(std::string_view text);
 
 private:
