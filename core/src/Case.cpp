@@ -1,8 +1,10 @@
 #include "magFoam/Case.hpp"
 
+#include "magFoam/BodyOverlap.hpp"
 #include "magFoam/Error.hpp"
 #include "magFoam/InputFile.hpp"
 #include "magFoam/Log.hpp"
+#include "magFoam/Parts.hpp"
 #include "magFoam/Plugins.hpp"
 #include "magFoam/ShapeFactory.hpp"
 
@@ -66,34 +68,99 @@ std::string bodyNameProblem(const std::string& name) {
     return {};
 }
 
+namespace {
+
+// The material an entry (a body or a part) names.
+const Material& entryMaterial(const Dict& e, const std::map<std::string, Material>& materials) {
+    const std::string matName = e.get<std::string>("material");
+    auto mat = materials.find(matName);
+    if (mat == materials.end()) {
+        std::string valid;
+        for (const auto& [n, m] : materials) valid += (valid.empty() ? "" : ", ") + n;
+        e.fail("material", "unknown material '" + matName + "'; materials in constant/materials.yaml: " +
+                               (valid.empty() ? std::string("(none)") : valid));
+    }
+    return mat->second;
+}
+
+// The magnetization of an entry of `material` (A/m, in its own frame): Br/mu0
+// along the given direction for a permanent one; none for a soft one (induced).
+// `who` names the entry in messages ("body 'a'", "part 1 of body 'a'").
+Vec3 entryMagnetization(const Dict& e, const Material& material, const std::string& who) {
+    if (material.soft()) {
+        if (e.has("magnetization"))
+            e.fail("magnetization", who + ": a soft material takes no magnetization: it is induced (material '" +
+                                        material.name + "' is soft)");
+        return Vec3::Zero();
+    }
+    const Vec3 dir = e.get<Vec3>("magnetization");
+    const double length = dir.stableNorm();
+    if (length < 1e-12 && material.Br > 0) e.fail("magnetization", who + ": magnetization direction has zero length");
+    return length > 0 ? Vec3(dir.stableNormalized() * material.Br / mu0) : Vec3::Zero();
+}
+
+// A compound body's `parts:` (docs/compound-bodies.md): each part's shape,
+// material, magnetization and place in the layout; the body frame is the
+// layout's, moved to the compound's centre of mass.
+void readParts(const Dict& b, Body& body, const std::map<std::string, Material>& materials,
+               const std::filesystem::path& caseDir, ShapeCache& shapes) {
+    for (const char* key : {"geometry", "material", "magnetization"})
+        if (b.has(key))
+            b.fail(key, fmt::format("body '{}' has parts: give each part its own {} (a body takes either parts or "
+                                    "geometry, material and magnetization)",
+                                    body.name, key));
+    const std::vector<Dict> entries = b.list("parts");
+    if (entries.empty()) b.fail("parts", "body '" + body.name + "': the list of parts is empty");
+    std::vector<Part> parts;
+    std::vector<Vec3> magnetization;
+    for (std::size_t k = 0; k < entries.size(); ++k) {
+        const Dict& e = entries[k];
+        const std::string who = fmt::format("part {} of body '{}'", k, body.name);
+        if (!e.has("geometry")) e.failHere(who + " has no geometry (box, sphere, cylinder or file)");
+        Part part;
+        part.material = entryMaterial(e, materials);
+        part.shape = shapes.get(e.sub("geometry"), caseDir / "constant");
+        part.position = e.get<Vec3>("position", Vec3::Zero());
+        part.orientation = readOrientation(e);
+        magnetization.push_back(entryMagnetization(e, part.material, who));
+        e.reportUnused();
+        parts.push_back(std::move(part));
+    }
+    const CompoundLayout layout = makeCompound(std::move(parts));
+    body.compound = layout.compound;
+    body.shape = layout.shape;
+    body.partMagnetization = std::move(magnetization);
+    body.magnetizationBody = meanMagnetization(*body.compound, body.partMagnetization);
+    // The compound's material stands for its parts' in messages only.
+    body.material.name = "(parts)";
+    body.material.density = body.compound->mass / body.shape->volume;
+    if (layout.centreOfMass.norm() > 1e-9 * body.shape->boundingRadius)
+        spdlog::info("{}: body '{}': centre of mass at {} in the parts' layout: the body's position is there",
+                     b.where("parts"), body.name, formatPoint(layout.centreOfMass));
+    // Parts that overlap count their common volume twice (mass, field). The
+    // body is at the origin here (its pose is read next).
+    std::vector<Body> placed;
+    for (std::size_t k = 0; k < body.compound->parts.size(); ++k)
+        placed.push_back(PartBodies::part(body, k, 1));
+    warnOverlaps(placed, b.file() + " (body '" + body.name + "')",
+                 "their common volume counts twice in the mass and the field");
+}
+
+} // namespace
+
 Body readBody(const Dict& b, const std::map<std::string, Material>& materials, const std::filesystem::path& caseDir,
               ShapeCache& shapes, std::shared_ptr<const Shape> shape) {
     Body body;
     body.name = b.get<std::string>("name");
     if (const std::string why = bodyNameProblem(body.name); !why.empty()) b.fail("name", why);
 
-    const std::string matName = b.get<std::string>("material");
-    auto mat = materials.find(matName);
-    if (mat == materials.end()) {
-        std::string valid;
-        for (const auto& [n, m] : materials) valid += (valid.empty() ? "" : ", ") + n;
-        b.fail("material", "unknown material '" + matName + "'; materials in constant/materials.yaml: " +
-                               (valid.empty() ? std::string("(none)") : valid));
-    }
-    body.material = mat->second;
-
-    body.shape = shape ? std::move(shape) : shapes.get(b.sub("geometry"), caseDir / "constant");
-
-    if (body.material.soft()) {
-        if (b.has("magnetization"))
-            b.fail("magnetization", "soft bodies take no magnetization: it is induced (material '" + matName +
-                                        "' is soft)");
+    if (b.has("parts")) {
+        if (shape) b.fail("parts", "body '" + body.name + "': a body given a shape takes no parts");
+        readParts(b, body, materials, caseDir, shapes);
     } else {
-        const Vec3 dir = b.get<Vec3>("magnetization");
-        const double length = dir.stableNorm();
-        if (length < 1e-12 && body.material.Br > 0)
-            b.fail("magnetization", "magnetization direction has zero length");
-        body.magnetizationBody = length > 0 ? Vec3(dir.stableNormalized() * body.material.Br / mu0) : Vec3::Zero();
+        body.material = entryMaterial(b, materials);
+        body.shape = shape ? std::move(shape) : shapes.get(b.sub("geometry"), caseDir / "constant");
+        body.magnetizationBody = entryMagnetization(b, body.material, "body '" + body.name + "'");
     }
 
     body.position = b.get<Vec3>("position");

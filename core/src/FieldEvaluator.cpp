@@ -22,11 +22,12 @@ Vec3 reactionArm(const Vec3& d, const Vec3& F) {
 
 void FieldEvaluator::addWrenches(std::span<const Body> bodies, std::span<const std::size_t> active,
                                  bool skipFixedPairs, std::span<Wrench> out) const {
-    // Every pair (i < j) of the active bodies.
+    // Every pair (i < j) of the active bodies but those within a compound.
     PairChunks pairs(*this, bodies, out);
     for (std::size_t a = 0; a < active.size(); ++a)
         for (std::size_t b = a + 1; b < active.size(); ++b) {
             const std::size_t i = active[a], j = active[b];
+            if (sameRigidBody(bodies[i], bodies[j])) continue;
             if (!(skipFixedPairs && bodies[i].fixed && bodies[j].fixed)) pairs.add(i, j);
         }
     pairs.finish();

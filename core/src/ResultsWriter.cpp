@@ -2,6 +2,8 @@
 
 #include "magFoam/Dictionary.hpp"
 #include "magFoam/Error.hpp"
+#include "magFoam/Log.hpp"
+#include "magFoam/Parts.hpp"
 #include "magFoam/VtkWriter.hpp"
 
 #include <algorithm>
@@ -85,6 +87,8 @@ void requireFinite(double time, long step, const std::vector<Body>& bodies, cons
         if (!b.velocity.allFinite()) fail(body + "velocity");
         if (!b.angularVelocity.allFinite()) fail(body + "angular velocity");
         if (!b.magnetizationBody.allFinite()) fail(body + "magnetization");
+        for (const Vec3& m : b.partMagnetization)
+            if (!m.allFinite()) fail(body + "a part's magnetization");
         if (wrenches && !((*wrenches)[i].force.allFinite() && (*wrenches)[i].totalTorque().allFinite()))
             fail(body + "force or torque");
     }
@@ -128,6 +132,20 @@ RestartState readState(const std::filesystem::path& file, std::vector<Body>& bod
         body.velocity = b.get<Vec3>("velocity");
         body.angularVelocity = b.get<Vec3>("angularVelocity");
         body.magnetizationBody = b.get<Vec3>("magnetization");
+        if (body.compound) {
+            // Each part's, in its own frame; the mean follows from them.
+            const auto rows = b.get<std::vector<std::vector<double>>>("partMagnetization");
+            if (rows.size() != body.compound->parts.size())
+                b.fail("partMagnetization", fmt::format("{} magnetizations for the {} parts of body '{}'", rows.size(),
+                                                        body.compound->parts.size(), name));
+            std::vector<Vec3> parts;
+            for (const auto& r : rows) {
+                if (r.size() != 3) b.fail("partMagnetization", "each part's magnetization is [x, y, z] (A/m)");
+                parts.emplace_back(r[0], r[1], r[2]);
+            }
+            body.partMagnetization = parts;
+            body.magnetizationBody = meanMagnetization(*body.compound, parts);
+        }
         b.reportUnused();
         seen[i] = true;
     }
@@ -255,6 +273,14 @@ void ResultsWriter::writeState(double time, long step, const std::vector<Body>& 
         os << "\n    magnetization: ";
         vec(os, b.magnetizationBody);
         os << "   # A/m, body frame\n";
+        if (b.compound) {
+            os << "    partMagnetization:   # A/m, each in its part's frame\n";
+            for (const Vec3& m : b.partMagnetization) {
+                os << "      - ";
+                vec(os, m);
+                os << "\n";
+            }
+        }
     }
     writeFileAtomically(folder / "bodies.yaml", os.str());
 }
@@ -267,7 +293,9 @@ void ResultsWriter::writeVtk(double time, const std::vector<Body>& bodies,
     std::vector<Vec3> points;
     std::vector<std::array<int, 3>> tris;
     std::vector<std::string> names;
-    vtk::PointField id{"body", 1, {}}, M{"magnetization", 3, {}}, V{"velocity", 3, {}};
+    // A compound's faces carry its part's index ("part"; 0 for other bodies)
+    // and that part's magnetization.
+    vtk::PointField id{"body", 1, {}}, part{"part", 1, {}}, M{"magnetization", 3, {}}, V{"velocity", 3, {}};
     vtk::PointField Bf{"B", 3, {}}, Bn{"Bn", 1, {}}, magB{"magB", 1, {}}, traction{"traction", 3, {}};
     const bool fields = faceB.size() == bodies.size();
     for (std::size_t i = 0; i < bodies.size(); ++i) {
@@ -281,21 +309,24 @@ void ResultsWriter::writeVtk(double time, const std::vector<Body>& bodies,
             const auto& t = mesh.triangles[k];
             tris.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
             id.values.push_back(double(i));
-            M.values.insert(M.values.end(), {m.x(), m.y(), m.z()});
+            const std::size_t p = b.compound ? b.compound->partOfTriangle(k) : 0;
+            part.values.push_back(double(p));
+            const Vec3 mFace = b.compound ? Vec3(b.orientation * (b.compound->parts[p].orientation * b.partMagnetization[p])) : m;
+            M.values.insert(M.values.end(), {mFace.x(), mFace.y(), mFace.z()});
             const Vec3 c = b.toWorld((mesh.vertices[t[0]] + mesh.vertices[t[1]] + mesh.vertices[t[2]]) / 3.0);
             const Vec3 v = b.velocity + b.angularVelocity.cross(c - b.position);
             V.values.insert(V.values.end(), {v.x(), v.y(), v.z()});
             if (!fields) continue;
             const Vec3 n = b.orientation * mesh.normal(static_cast<int>(k));
             const Vec3& B = faceB[i][k];
-            const Vec3 f = m.dot(n) * B;
+            const Vec3 f = mFace.dot(n) * B;
             Bf.values.insert(Bf.values.end(), {B.x(), B.y(), B.z()});
             Bn.values.push_back(B.dot(n));
             magB.values.push_back(B.norm());
             traction.values.insert(traction.values.end(), {f.x(), f.y(), f.z()});
         }
     }
-    std::vector<vtk::PointField> cells = {id, M, V};
+    std::vector<vtk::PointField> cells = {id, part, M, V};
     if (fields) cells.insert(cells.end(), {Bf, Bn, magB, traction});
     while (!series_.empty() && series_.back().first >= time - 1e-12) series_.pop_back();
     const std::string name = "bodies_" + std::to_string(series_.size()) + ".vtp";

@@ -50,12 +50,12 @@ void writeResults(ResultsWriter& writer, MagneticSystem& magnets, const std::vec
     double magnetic = 0;
     if (std::any_of(bodies.begin(), bodies.end(), [](const Body& b) { return b.soft(); })) {
         std::ostringstream saved;
-        magnets.inductionModel().writeState(saved, bodies);
+        magnets.writeInductionState(saved, bodies);
         std::vector<Body> settled = bodies;
         magnets.converge(settled);
         magnetic = magnets.magneticEnergy(settled, magnets.wrenches(settled));
         if (!saved.str().empty())
-            magnets.inductionModel().readState(Dict::fromString(saved.str(), "induction state"), bodies);
+            magnets.readInductionState(Dict::fromString(saved.str(), "induction state"), bodies);
     } else {
         magnetic = magnets.magneticEnergy(bodies, w);
     }
@@ -103,7 +103,7 @@ void run(Case& c, const RunOptions& options) {
     backend->setup(bodies);
 
     // Start: from startTime, or from the newest time folder (bodies and models).
-    const Start start = startRun(c, bodies, magnets.inductionModel(), *backend);
+    const Start start = startRun(c, bodies, magnets, *backend);
     // Bodies inside each other at the start: named, with how deep; the run goes
     // on (MBM is defined there), but a contact solver will push them apart.
     if (!start.folder)
@@ -127,7 +127,7 @@ void run(Case& c, const RunOptions& options) {
         magnets.setTime(t);
         std::vector<StateFile> states;
         if (withModels) {
-            states = modelStates(magnets.inductionModel(), *backend, state, loop.adaptive() ? lastDeltaT : 0.0);
+            states = modelStates(magnets, *backend, state, loop.adaptive() ? lastDeltaT : 0.0);
             states.push_back({"sleep.yaml", sleeping.stateText(state)});
         }
         writeResults(writer, magnets, state, gravity, t, step, states, options.onWrite,

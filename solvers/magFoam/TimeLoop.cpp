@@ -3,6 +3,7 @@
 #include <magFoam/Dictionary.hpp>
 #include <magFoam/Error.hpp>
 #include <magFoam/Log.hpp>
+#include <magFoam/Parts.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -46,7 +47,7 @@ RestartState checkTimeFolder(const std::filesystem::path& folder, std::vector<Bo
 
 } // namespace
 
-Start startRun(const Case& c, std::vector<Body>& bodies, InductionModel& induction, RigidBodyBackend& backend) {
+Start startRun(const Case& c, std::vector<Body>& bodies, MagneticSystem& magnets, RigidBodyBackend& backend) {
     const ControlDict& control = c.control();
     Start s;
     s.time = control.startTime;
@@ -76,6 +77,20 @@ Start startRun(const Case& c, std::vector<Body>& bodies, InductionModel& inducti
     const std::vector<Body> fromDictionaries = bodies;
     const RestartState r = readState(*folder / "bodies.yaml", bodies);
     for (std::size_t i = 0; i < bodies.size(); ++i) {
+        if (const auto& compound = bodies[i].compound) {
+            // Each permanent part's from constant/, each soft part's from the state.
+            for (std::size_t k = 0; k < compound->parts.size(); ++k) {
+                if (compound->parts[k].material.soft()) continue;
+                const Vec3 dict = fromDictionaries[i].partMagnetization[k];
+                if (bodies[i].partMagnetization[k] != dict)
+                    spdlog::info("Restart: part {} of body '{}' takes its magnetization from constant/ ({} A/m, part "
+                                 "frame), not the state's ({} A/m)",
+                                 k, bodies[i].name, formatExact(dict), formatExact(bodies[i].partMagnetization[k]));
+                bodies[i].partMagnetization[k] = dict;
+            }
+            bodies[i].magnetizationBody = meanMagnetization(*compound, bodies[i].partMagnetization);
+            continue;
+        }
         if (bodies[i].soft()) continue;
         const Vec3 dict = fromDictionaries[i].magnetizationBody;
         if (bodies[i].magnetizationBody != dict)
@@ -89,7 +104,7 @@ Start startRun(const Case& c, std::vector<Body>& bodies, InductionModel& inducti
     // The bodies were set from outside; then what the models carried.
     backend.setState(bodies);
     if (const auto file = *folder / kInductionFile; std::filesystem::exists(file))
-        induction.readState(Dict::fromFile(file), bodies);
+        magnets.readInductionState(Dict::fromFile(file), bodies);
     if (const auto file = *folder / kRigidBodyFile; std::filesystem::exists(file))
         backend.readState(Dict::fromFile(file), bodies);
     if (const auto file = *folder / kTimeStepFile; std::filesystem::exists(file)) {
@@ -101,10 +116,10 @@ Start startRun(const Case& c, std::vector<Body>& bodies, InductionModel& inducti
     return s;
 }
 
-std::vector<StateFile> modelStates(const InductionModel& induction, const RigidBodyBackend& backend,
+std::vector<StateFile> modelStates(const MagneticSystem& magnets, const RigidBodyBackend& backend,
                                    const std::vector<Body>& bodies, double lastDeltaT) {
     std::ostringstream ind, rb;
-    induction.writeState(ind, bodies);
+    magnets.writeInductionState(ind, bodies);
     backend.writeState(rb, bodies);
     const std::string dt = lastDeltaT > 0 ? "# adaptive steps: the last step's length (s)\ndeltaT: " +
                                                 formatExact(lastDeltaT) + "\n"

@@ -13,6 +13,7 @@
 #include <magFoam/Case.hpp>
 #include <magFoam/ControlDict.hpp>
 #include <magFoam/InductionModel.hpp>
+#include <magFoam/MagneticSystem.hpp>
 #include <magFoam/ResultsWriter.hpp>
 #include <magFoam/RigidBodyBackend.hpp>
 
@@ -35,11 +36,11 @@ struct Start {
 // startTime, or with startFrom: latestTime the newest time folder: its
 // bodies.yaml into `bodies`, backend.setState(bodies), then each model's
 // file, where present, to its readState. Logs "Restarting from ...".
-Start startRun(const Case& c, std::vector<Body>& bodies, InductionModel& induction, RigidBodyBackend& backend);
+Start startRun(const Case& c, std::vector<Body>& bodies, MagneticSystem& magnets, RigidBodyBackend& backend);
 
 // The models' restart files for ResultsWriter::write (empty text: no state),
 // and with adaptive steps the last step's length (timeStep.yaml).
-std::vector<StateFile> modelStates(const InductionModel& induction, const RigidBodyBackend& backend,
+std::vector<StateFile> modelStates(const MagneticSystem& magnets, const RigidBodyBackend& backend,
                                    const std::vector<Body>& bodies, double lastDeltaT = 0);
 
 // Steps are numbered from startTime (step 0) on, also across restarts.

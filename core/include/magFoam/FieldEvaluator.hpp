@@ -121,6 +121,12 @@ public:
         return bodies[j].fixed && !bodies[i].fixed ? BodyPair{j, i} : BodyPair{i, j};
     }
 
+    // Whether a and b are parts of one compound body (Body::group): an
+    // evaluator's addWrenches() leaves their pair out. (A pair it treats in
+    // bulk, as the hybrid's dipole sum, may stay in: its action and reaction
+    // cancel in the body's sum.)
+    static bool sameRigidBody(const Body& a, const Body& b) { return a.group != 0 && a.group == b.group; }
+
     // Counters since construction (pairs by tier, softened pairs, ...) for
     // logs, tests and benchmarks; the default has none.
     virtual FieldStats stats() const { return {}; }

@@ -9,6 +9,7 @@
 #include "magFoam/FieldEvaluator.hpp"
 #include "magFoam/InductionModel.hpp"
 
+#include <iosfwd>
 #include <memory>
 #include <span>
 #include <vector>
@@ -45,12 +46,17 @@ public:
     Step step(std::vector<Body>& bodies) const;
 
     // The scene's magnetic energy (J) from wrenches() at converged
-    // magnetizations, as the induction model counts soft bodies.
-    double magneticEnergy(const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches) const {
-        return induction_->sceneEnergy(bodies, wrenches);
-    }
+    // magnetizations, as the induction model counts soft bodies. A compound
+    // with a soft part takes one more evaluation of the parts, with the pairs
+    // within each compound (they change with the soft part's magnetization).
+    double magneticEnergy(const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches) const;
 
-    // Total field of all bodies (except `exclude`, if set) and the applied field at world points.
+    // The induction model's restart state (InductionModel::writeState,
+    // readState), given the bodies' parts.
+    void writeInductionState(std::ostream& yaml, const std::vector<Body>& bodies) const;
+    void readInductionState(const Dict& state, const std::vector<Body>& bodies);
+
+    // Total field of all bodies (except `exclude`, if set, and its parts) and the applied field at world points.
     void field(const std::vector<Body>& bodies, std::span<const Vec3> points, std::span<Vec3> B,
                std::span<Vec3> A = {}, std::span<Vec3> H = {}, const Body* exclude = nullptr) const;
 
@@ -60,6 +66,9 @@ public:
     InductionModel& inductionModel() { return *induction_; }  // restart state (InductionModel::readState)
 
 private:
+    // wrenches() of bodies that are not compound (parts).
+    std::vector<Wrench> partWrenches(const std::vector<Body>& bodies, bool skipFixedTargets) const;
+
     std::unique_ptr<FieldEvaluator> field_;
     std::unique_ptr<InductionModel> induction_;
     std::unique_ptr<AppliedField> applied_;

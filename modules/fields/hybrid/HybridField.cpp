@@ -277,7 +277,8 @@ public:
         tier.reserve(active.size());
         for (std::size_t i : active) tier.push_back(farFieldBody(bodies[i], dipoleReach(bodies[i])));
         PairChunks pairs(*this, bodies, out);
-        for (const auto& [a, b] : nearPairs(tier, skipFixedPairs)) pairs.add(active[a], active[b]);
+        for (const auto& [a, b] : nearPairs(tier, skipFixedPairs))
+            if (!sameRigidBody(bodies[active[a]], bodies[active[b]])) pairs.add(active[a], active[b]);
         pairs.finish();
         std::vector<Wrench> far(tier.size());
         const auto start = std::chrono::steady_clock::now();

@@ -55,6 +55,9 @@
 // axes, volume = that of its bounding box) becomes a box geom with an
 // offset; every other mesh a dGeomTriMesh of the body-frame mesh. `mesh`
 // makes every body a trimesh (for comparisons and the tests).
+// A compound body (docs/compound-bodies.md) gets one geom per part, each
+// chosen as above from the part's own shape and offset to the part's place
+// on the one ODE body; ODE does not collide geoms of one body.
 //
 // Contacts. A near callback collects up to 64 contacts per pair from
 // dCollide; pairs with a triangle mesh get their normals and depths
@@ -365,9 +368,9 @@ public:
             const Body& b = bodies[i];
             if (!b.shape) throw InputError("body '" + b.name + "' has no shape");
             Entry& e = entries_[i];
-            e.collision = &collisionShape(b);
             e.fixed = b.fixed;
-            smallest = std::min(smallest, e.collision->scale), largest = std::max(largest, e.collision->scale);
+            e.scale = b.shape->boundingRadius > 0 ? b.shape->boundingRadius : boundingSphereRadius(*b.shape);
+            smallest = std::min(smallest, e.scale), largest = std::max(largest, e.scale);
             if (!b.fixed) {
                 e.body = dBodyCreate(world_);
                 setMass(e.body, b);
@@ -375,12 +378,29 @@ public:
                 dBodySetFiniteRotationMode(e.body, 1);
                 dBodySetAutoDisableFlag(e.body, 0);
             }
-            e.geom = createGeom(*e.collision);
-            dGeomSetData(e.geom, &e);
-            if (e.body) {
-                dGeomSetBody(e.geom, e.body);
-                if (e.collision->offset != Vec3::Zero() || e.collision->offsetRotation.coeffs() != Quat::Identity().coeffs())
-                    setGeomOffset(e.geom, *e.collision);
+            // A compound collides as the union of its parts' shapes: one geom
+            // per part on the one ODE body (ODE never collides geoms of one body).
+            auto addPiece = [&](const std::shared_ptr<const Shape>& shape, const Vec3& position, const Quat& rotation,
+                                std::string name) {
+                const CollisionShape& cs = collisionShape(shape);
+                e.pieces.push_back(Piece{&cs, createGeom(cs), position + rotation * cs.offset,
+                                         rotation * cs.offsetRotation, i, std::move(name)});
+            };
+            if (b.compound) {
+                e.pieces.reserve(b.compound->parts.size());
+                for (std::size_t k = 0; k < b.compound->parts.size(); ++k) {
+                    const Part& part = b.compound->parts[k];
+                    addPiece(part.shape, part.position, part.orientation, b.name + "/" + std::to_string(k));
+                }
+            } else {
+                addPiece(b.shape, Vec3::Zero(), Quat::Identity(), b.name);
+            }
+            for (Piece& piece : e.pieces) {
+                dGeomSetData(piece.geom, &piece);
+                if (!e.body) continue;
+                dGeomSetBody(piece.geom, e.body);
+                if (piece.offset != Vec3::Zero() || piece.rotation.coeffs() != Quat::Identity().coeffs())
+                    setGeomOffset(piece.geom, piece.offset, piece.rotation);
             }
             push(b, e);
         }
@@ -470,8 +490,8 @@ public:
            << rng_ << "\nspaceOrder: [";
         const int n = dSpaceGetNumGeoms(space_);
         for (int k = 0; k < n; ++k) {
-            const auto* e = static_cast<const Entry*>(dGeomGetData(dSpaceGetGeom(space_, k)));
-            os << (k ? ", " : "") << (e ? bodies[static_cast<std::size_t>(e - entries_.data())].name : kGroundName);
+            const auto* piece = static_cast<const Piece*>(dGeomGetData(dSpaceGetGeom(space_, k)));
+            os << (k ? ", " : "") << (piece ? piece->name : kGroundName);
         }
         os << "]\n";
     }
@@ -494,8 +514,8 @@ public:
         const int n = dSpaceGetNumGeoms(space_);
         for (int k = 0; k < n; ++k) {
             const dGeomID g = dSpaceGetGeom(space_, k);
-            const auto* e = static_cast<const Entry*>(dGeomGetData(g));
-            byName[e ? bodies[static_cast<std::size_t>(e - entries_.data())].name : kGroundName] = g;
+            const auto* piece = static_cast<const Piece*>(dGeomGetData(g));
+            byName[piece ? piece->name : kGroundName] = g;
         }
         for (const std::string& name : order) {
             auto it = byName.find(name);
@@ -524,7 +544,8 @@ public:
            << ", maxContacts " << maxContacts_ << ", subSteps " << subSteps_;
         // Bodies per collision shape, then (once stepping) what the steps did.
         std::map<std::string, int> count;
-        for (const Entry& e : entries_) ++count[e.collision->name()];
+        for (const Entry& e : entries_)
+            for (const Piece& piece : e.pieces) ++count[piece.collision->name()];
         os << "; collision shapes:";
         const char* sep = " ";
         for (const auto& [name, n] : count) os << sep << n << " " << name, sep = ", ";
@@ -542,12 +563,21 @@ public:
     };
 
 private:
-    struct Entry {
+    // One geom of a body: the body's shape, or one part's of a compound.
+    struct Piece {
         const CollisionShape* collision = nullptr;
-        dBodyID body = nullptr; // null for fixed bodies: a static geom
         dGeomID geom = nullptr;
+        Vec3 offset = Vec3::Zero();             // geom centre in the body frame
+        Quat rotation = Quat::Identity();       // geom axes in the body frame
+        std::size_t body = 0;
+        std::string name;                       // the body's, or "<body>/<part>" (restart spaceOrder)
+    };
+    struct Entry {
+        std::vector<Piece> pieces;
+        dBodyID body = nullptr; // null for fixed bodies: static geoms
         bool fixed = false;
         double mass = 0;
+        double scale = 0;       // bounding radius about the COM, m
     };
 
     // The ground plane in the restart file's spaceOrder.
@@ -562,7 +592,7 @@ private:
         for (std::size_t i = 0; i < entries_.size(); ++i) {
             const Entry& e = entries_[i];
             if (!e.body || !dBodyIsEnabled(e.body)) continue;  // fixed, or sleeping: it does not travel
-            const double r = e.collision->scale;
+            const double r = e.scale;
             const dReal* v = dBodyGetLinearVel(e.body);
             const dReal* w = dBodyGetAngularVel(e.body);
             const Vec3 a = wrenches[i].force / e.mass + gravity_;
@@ -590,8 +620,8 @@ private:
             contacts_.push_back({Vec3(c.pos[0], c.pos[1], c.pos[2]), Vec3(c.normal[0], c.normal[1], c.normal[2]),
                                  c.depth, i});
         }
-        const auto* e1 = static_cast<const Entry*>(dGeomGetData(g1));
-        const auto* e2 = static_cast<const Entry*>(dGeomGetData(g2));
+        const auto* e1 = static_cast<const Piece*>(dGeomGetData(g1));
+        const auto* e2 = static_cast<const Piece*>(dGeomGetData(g2));
         const bool mesh = (e1 && e1->collision->type == CollisionShape::Type::trimesh) ||
                           (e2 && e2->collision->type == CollisionShape::Type::trimesh);
         // Meshes: correct normals and depths (ContactManifold.hpp); contacts
@@ -625,12 +655,12 @@ private:
         }
     }
 
-    const CollisionShape& collisionShape(const Body& b) {
-        auto it = shapes_.find(b.shape.get());
+    const CollisionShape& collisionShape(const std::shared_ptr<const Shape>& shape) {
+        auto it = shapes_.find(shape.get());
         if (it != shapes_.end()) return *it->second;
         auto cs = std::make_unique<CollisionShape>();
-        const Shape& s = *b.shape;
-        cs->shape = b.shape;
+        const Shape& s = *shape;
+        cs->shape = shape;
         cs->scale = s.boundingRadius > 0 ? s.boundingRadius : boundingSphereRadius(s);
         using K = ShapeKind::Kind;
         if (!meshOnly_ && s.kind.kind == K::box) {
@@ -660,7 +690,7 @@ private:
                                         static_cast<int>(cs->indices.size()), 3 * sizeof(dTriIndex));
             dGeomTriMeshDataPreprocess2(cs->data, 1U << dTRIDATAPREPROCESS_BUILD_CONCAVE_EDGES, nullptr);
         }
-        return *shapes_.emplace(b.shape.get(), std::move(cs)).first->second;
+        return *shapes_.emplace(shape.get(), std::move(cs)).first->second;
     }
 
     static double boundingSphereRadius(const Shape& s) {
@@ -679,10 +709,9 @@ private:
         return dCreateTriMesh(space_, cs.data, nullptr, nullptr, nullptr);
     }
 
-    static void setGeomOffset(dGeomID g, const CollisionShape& cs) {
-        dGeomSetOffsetPosition(g, cs.offset.x(), cs.offset.y(), cs.offset.z());
-        const dQuaternion q = {cs.offsetRotation.w(), cs.offsetRotation.x(), cs.offsetRotation.y(),
-                               cs.offsetRotation.z()};
+    static void setGeomOffset(dGeomID g, const Vec3& offset, const Quat& rotation) {
+        dGeomSetOffsetPosition(g, offset.x(), offset.y(), offset.z());
+        const dQuaternion q = {rotation.w(), rotation.x(), rotation.y(), rotation.z()};
         dGeomSetOffsetQuaternion(g, q);
     }
 
@@ -713,14 +742,15 @@ private:
             dBodySetLinearVel(e.body, b.velocity.x(), b.velocity.y(), b.velocity.z());
             dBodySetAngularVel(e.body, b.angularVelocity.x(), b.angularVelocity.y(), b.angularVelocity.z());
         } else {
-            // Static geom: the body pose composed with the geom offset.
-            const CollisionShape& cs = *e.collision;
+            // Static geoms: the body pose composed with each geom's offset.
             const Quat qb = q.normalized();
-            const Vec3 p = b.position + qb * cs.offset;
-            const Quat qg = qb * cs.offsetRotation;
-            const dQuaternion dqg = {qg.w(), qg.x(), qg.y(), qg.z()};
-            dGeomSetPosition(e.geom, p.x(), p.y(), p.z());
-            dGeomSetQuaternion(e.geom, dqg);
+            for (const Piece& piece : e.pieces) {
+                const Vec3 p = b.position + qb * piece.offset;
+                const Quat qg = qb * piece.rotation;
+                const dQuaternion dqg = {qg.w(), qg.x(), qg.y(), qg.z()};
+                dGeomSetPosition(piece.geom, p.x(), p.y(), p.z());
+                dGeomSetQuaternion(piece.geom, dqg);
+            }
         }
     }
 

@@ -17,6 +17,7 @@
 #include <magFoam/Log.hpp>
 #include <magFoam/MagneticSystem.hpp>
 #include <magFoam/OutputFile.hpp>
+#include <magFoam/Parts.hpp>
 #include <magFoam/Threads.hpp>
 
 #include "ForceSweep.hpp"
@@ -30,9 +31,10 @@ using namespace mag;
 
 namespace {
 
-// One line per soft body: its converged (induced) magnetization.
+// One line per soft body (a compound's: per soft part, "<body>/<k>"): its
+// converged (induced) magnetization.
 void printSoftBodies(const std::vector<Body>& bodies) {
-    for (const Body& b : bodies) {
+    for (const Body& b : PartBodies(bodies).parts) {
         if (!b.soft()) continue;
         const Vec3 M = b.magnetization();
         spdlog::info("  soft {:<12} M = ({:.6g}, {:.6g}, {:.6g}) A/m (world), |M| = {:.6g} A/m, mu0|M| = {:.4g} T",
