@@ -89,6 +89,31 @@ void checkExactRestart(Setup setup, double deltaT, double T, double split, doubl
 
 } // namespace
 
+TEST_CASE("restart is exact: a compound with a soft part, with LLG", "[restart][compound]") {
+    // A magnet with a steel cap (one compound, docs/compound-bodies.md) falls
+    // onto a steel plate: the cap's magnetization and LLG's state per part.
+    auto setup = [](magtest::TempCase& c) {
+        c.write("system/magSchemes.yaml", "field: {type: MBM, quadrature: {type: regular, n: 1}, overlap: amperian}\n"
+                                          "induction: {type: LLG, tolerance: 1e-6, maxIterations: 200}\n");
+        c.write("constant/materials.yaml", "N42: {model: permanent, Br: 1.3, density: 7500}\n"
+                                           "steel: {model: soft, k: 5, Js: 2.0, density: 7850}\n");
+        c.write("constant/bodies.yaml",
+                "bodies:\n"
+                "  - {name: plate, geometry: {box: {size: [0.03, 0.03, 0.002]}}, material: steel,\n"
+                "     position: [0, 0, 0.001], motion: fixed}\n"
+                "  - name: holder\n"
+                "    parts:\n"
+                "      - {geometry: {box: {size: [0.01, 0.01, 0.004]}}, material: steel, position: [0, 0, 0.007]}\n"
+                "      - {geometry: {cylinder: {radius: 0.004, height: 0.005, segments: 24}}, material: N42,\n"
+                "         magnetization: [0, 0, 1], position: [0, 0, 0.0025]}\n"
+                "    position: [0.001, 0, 0.008]\n"
+                "    orientation: {axis: [1, 0, 0], angle: 15}\n");
+        c.write("constant/rigidBody.yaml", "type: ODE\ngravity: [0, 0, -9.81]\n"
+                                           "contact: {friction: 0.4, restitution: 0.1}\nmaxTravel: 0.01\n");
+    };
+    checkExactRestart(setup, 1e-4, 0.015, 0.0087, 0.002, {"induction.yaml", "rigidBody.yaml"});
+}
+
 TEST_CASE("restart is exact: soft iron with LLG", "[restart]") {
     // tutorials/softIron, smaller: a steel block pulled onto a fixed magnet.
     auto setup = [](magtest::TempCase& c) {

@@ -103,7 +103,7 @@ TEST_CASE("VTK output: valid XML series with consistent counts", "[solver]") {
             CHECK(count == std::stoi((*a)[2]) * nPolys);
             ++arrays;
         }
-        CHECK(arrays == 7);  // body, magnetization, velocity, B, Bn, magB, traction
+        CHECK(arrays == 8);  // body, part, magnetization, velocity, B, Bn, magB, traction
         CHECK(vtp.find("Name=\"bodyNames\" NumberOfTuples=\"2\"") != std::string::npos);
         std::smatch pts;
         REQUIRE(std::regex_search(vtp, pts, std::regex("<Points><DataArray[^>]*>([^<]*)</DataArray>")));

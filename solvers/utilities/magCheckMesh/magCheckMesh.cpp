@@ -172,19 +172,31 @@ int checkCase(const std::filesystem::path& dir) {
     const auto bodiesFile = dir / "constant/bodies.yaml";
     const mag::Dict bodies = mag::Dict::fromFile(bodiesFile);
     int unusable = 0, n = 0;
-    for (const mag::Dict& b : bodies.list("bodies")) {
+    auto check = [&](const mag::Dict& entry) {
         ++n;
-        const std::string name = b.get<std::string>("name", "(unnamed)");
-        std::cout << "body " << name << " (" << b.where() << ")\n";
         try {
             mag::ShapeKind kind;
             std::string key;
-            const mag::SurfaceMesh mesh = mag::geometryMesh(b.sub("geometry"), dir / "constant", kind, key);
+            const mag::SurfaceMesh mesh = mag::geometryMesh(entry.sub("geometry"), dir / "constant", kind, key);
             std::cout << "  geometry: " << mesh.source << "\n";
             if (!mag::checkAndReport(mesh, std::cout)) ++unusable;
         } catch (const std::exception& e) {
             std::cout << "mesh UNUSABLE: " << e.what() << '\n';
             ++unusable;
+        }
+    };
+    for (const mag::Dict& b : bodies.list("bodies")) {
+        const std::string name = b.get<std::string>("name", "(unnamed)");
+        std::cout << "body " << name << " (" << b.where() << ")\n";
+        if (b.has("parts")) {
+            // A compound (docs/compound-bodies.md): each part's mesh.
+            const std::vector<mag::Dict> parts = b.list("parts");
+            for (std::size_t k = 0; k < parts.size(); ++k) {
+                std::cout << " part " << k << " (" << parts[k].where() << ")\n";
+                check(parts[k]);
+            }
+        } else {
+            check(b);
         }
         std::cout << "\n";
     }
