@@ -101,6 +101,55 @@ void System::addBody(const std::string& name, const py::kwargs& kwargs) {
         return v;
     };
     entry["name"] = name;
+    auto isMap = [](const py::object& o) { return py::isinstance<py::dict>(o); };
+    // Files relative to the Python process's working folder, not a case's constant/.
+    auto absolute = [](const py::object& path) {
+        return std::filesystem::absolute(py::str(py::module_::import("os").attr("fspath")(path)).cast<std::string>())
+            .string();
+    };
+    // A geometry dict with its file made absolute (a copy: the caller's stays as it was).
+    auto absoluteGeometry = [&](const py::object& geometry) -> py::object {
+        if (!isMap(geometry) || !geometry.contains("file")) return geometry;
+        py::dict g = geometry.attr("copy")();
+        g["file"] = absolute(g["file"]);
+        return g;
+    };
+
+    // Pose and motion.
+    auto poseAndMotion = [&] {
+        const py::object quaternion = pop("quaternion"), fixed = pop("fixed");
+        if (!quaternion.is_none()) {
+            if (entry.contains("orientation"))
+                throw InputError(what + ": quaternion: give quaternion= or orientation=, not both");
+            entry["orientation"] = py::dict(py::arg("quaternion") = quaternion);
+        }
+        if (!fixed.is_none()) {
+            if (entry.contains("motion")) throw InputError(what + ": fixed: give fixed= or motion=, not both");
+            entry["motion"] = fixed.cast<bool>() ? "fixed" : "dynamic";
+        }
+        if (!entry.contains("position")) entry["position"] = py::make_tuple(0.0, 0.0, 0.0);
+    };
+
+    // A compound (docs/compound-bodies.md): parts as in bodies.yaml, their
+    // materials from System(materials=...); the reader checks the rest.
+    if (entry.contains("parts")) {
+        py::list parts;
+        for (const py::handle& p : py::iter(entry["parts"])) {
+            py::object part = py::reinterpret_borrow<py::object>(p);
+            if (isMap(part) && part.contains("geometry")) {
+                py::dict copy = part.attr("copy")();
+                copy["geometry"] = absoluteGeometry(copy["geometry"]);
+                part = copy;
+            }
+            parts.append(part);
+        }
+        entry["parts"] = parts;
+        poseAndMotion();
+        Body body = readBody(toDict(entry, what), materials_, std::filesystem::current_path(), shapes_);
+        std::lock_guard lock(mutex_);
+        bodies_.push_back(std::move(body));
+        return;
+    }
 
     // Geometry: exactly one form.
     const py::object box = pop("box"), sphere = pop("sphere"), cylinder = pop("cylinder"), mesh = pop("mesh"),
@@ -114,17 +163,7 @@ void System::addBody(const std::string& name, const py::kwargs& kwargs) {
     if (!scale.is_none() && file.is_none() && mesh.is_none())
         throw InputError(what + ": scale: only with file= or mesh=");
     std::shared_ptr<const Shape> shape;
-    auto isMap = [](const py::object& o) { return py::isinstance<py::dict>(o); };
-    // Files relative to the Python process's working folder, not a case's constant/.
-    auto absolute = [](const py::object& path) {
-        return std::filesystem::absolute(py::str(py::module_::import("os").attr("fspath")(path)).cast<std::string>())
-            .string();
-    };
-    if (entry.contains("geometry") && isMap(entry["geometry"]) && entry["geometry"].contains("file")) {
-        py::dict g = entry["geometry"].attr("copy")();  // the caller's dict stays as it was
-        g["file"] = absolute(g["file"]);
-        entry["geometry"] = g;
-    }
+    if (entry.contains("geometry")) entry["geometry"] = absoluteGeometry(entry["geometry"]);
     if (!box.is_none()) entry["geometry"] = py::dict(py::arg("box") = isMap(box) ? box : py::dict(py::arg("size") = box));
     if (!sphere.is_none())
         entry["geometry"] = py::dict(py::arg("sphere") = isMap(sphere) ? sphere : py::dict(py::arg("radius") = sphere));
@@ -182,17 +221,7 @@ void System::addBody(const std::string& name, const py::kwargs& kwargs) {
         entry["material"] = name;
     }
 
-    // Pose and motion.
-    const py::object quaternion = pop("quaternion"), fixed = pop("fixed");
-    if (!quaternion.is_none()) {
-        if (entry.contains("orientation")) throw InputError(what + ": quaternion: give quaternion= or orientation=, not both");
-        entry["orientation"] = py::dict(py::arg("quaternion") = quaternion);
-    }
-    if (!fixed.is_none()) {
-        if (entry.contains("motion")) throw InputError(what + ": fixed: give fixed= or motion=, not both");
-        entry["motion"] = fixed.cast<bool>() ? "fixed" : "dynamic";
-    }
-    if (!entry.contains("position")) entry["position"] = py::make_tuple(0.0, 0.0, 0.0);
+    poseAndMotion();
 
     Body body = readBody(toDict(entry, what), *materials, std::filesystem::current_path(), shapes_, shape);
     std::lock_guard lock(mutex_);
