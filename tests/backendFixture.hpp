@@ -1,0 +1,158 @@
+// Rigid-body backends in tests: bodies built in code (boxes, icospheres,
+// cylinders, an L prism), a run under a constant force with its energy
+// bookkeeping, and a magnet-like stack (a cube pulled onto a fixed cube).
+// Shared by the ODE and Bullet contract tests.
+#pragma once
+
+#include <magFoam/Error.hpp>
+#include <magFoam/MeshPrimitives.hpp>
+#include <magFoam/RigidBodyBackend.hpp>
+#include <magFoam/ShapeFactory.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace backendtest {
+
+using mag::Body;
+using mag::Quat;
+using mag::Vec3;
+using mag::Wrench;
+using Kind = mag::ShapeKind::Kind;
+
+inline std::unique_ptr<mag::RigidBodyBackend> backend(const std::string& yaml) {
+    return mag::RigidBodyBackend::New(mag::Dict::fromString(yaml, "constant/rigidBody.yaml"));
+}
+
+inline Body makeBody(const std::string& name, const mag::SurfaceMesh& mesh, const mag::ShapeKind& kind, double density = 7500) {
+    Body b;
+    b.name = name;
+    b.shape = mag::makeShape(mesh, kind);
+    b.material.name = "N";
+    b.material.density = density;
+    return b;
+}
+inline Body cube(const std::string& name, double edge, Kind kind = Kind::box) {
+    mag::ShapeKind k;
+    k.kind = kind;
+    k.size = Vec3::Constant(edge);
+    return makeBody(name, mag::makeBox(Vec3::Constant(edge)), k);
+}
+inline Body ball(const std::string& name, double radius, Kind kind) {
+    mag::ShapeKind k;
+    k.kind = kind;
+    k.radius = radius;
+    return makeBody(name, mag::makeIcosphere(radius, 3), k);
+}
+inline Body rod(const std::string& name, double radius, double height) {
+    mag::ShapeKind k;
+    k.kind = Kind::cylinder;
+    k.radius = radius, k.height = height;
+    return makeBody(name, mag::makeCylinder(radius, height, 32), k);
+}
+
+// L-shaped prism (non-convex): the polygon (0,0) (2,0) (2,1) (1,1) (1,2) (0,2)
+// times `unit` in x and y, extruded over `depth` along z.
+inline mag::SurfaceMesh makeL(double unit, double depth) {
+    const double P[6][2] = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
+    mag::SurfaceMesh m;
+    for (int k = 0; k < 2; ++k)
+        for (const auto& p : P) m.vertices.push_back(Vec3(p[0] * unit, p[1] * unit, (k - 0.5) * depth));
+    // Caps: fans from vertex 0 (the L is star-shaped from its corner).
+    for (int i = 1; i < 5; ++i) {
+        m.triangles.push_back({0, i + 1, i});
+        m.triangles.push_back({6, 6 + i, 6 + i + 1});
+    }
+    for (int i = 0; i < 6; ++i) {
+        const int j = (i + 1) % 6;
+        m.triangles.push_back({i, j, 6 + j});
+        m.triangles.push_back({i, 6 + j, 6 + i});
+    }
+    m.source = "L prism";
+    return m;
+}
+
+// Lowest point of a body along z, and its lowest vertex height above its COM.
+inline double lowestZ(const Body& b) {
+    double low = 1e300;
+    for (const Vec3& v : b.shape->mesh.vertices) low = std::min(low, b.toWorld(v).z());
+    return low;
+}
+
+// A run of the backend with a constant external force on every dynamic body
+// (`force`, N, plus gravity from the dictionary) or a per-step wrench.
+struct Run {
+    double energyRise = 0; // max over the run of E(t) - E(0), J
+    double maxSpeed = 0;   // of any point: |v| + |w| * bounding radius, m/s
+    double seconds = 0;    // wall clock per step
+};
+inline Run simulate(mag::RigidBodyBackend& rb, std::vector<Body>& bodies, const Vec3& gravity, const Vec3& force, double dt,
+             int steps, const std::function<void(int)>& each = {}) {
+    std::vector<Wrench> w(bodies.size());
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+        if (!bodies[i].fixed) w[i].force = force;
+    // Energy with the constant force's potential -F.x and gravity's -m g.x.
+    auto energy = [&] {
+        double e = 0;
+        for (const Body& b : bodies) {
+            if (b.fixed) continue;
+            e += 0.5 * b.mass() * b.velocity.squaredNorm() +
+                 0.5 * b.angularVelocity.dot(b.inertiaWorld() * b.angularVelocity) -
+                 (b.mass() * gravity + force).dot(b.position);
+        }
+        return e;
+    };
+    const double E0 = energy();
+    Run run;
+    const auto start = std::chrono::steady_clock::now();
+    for (int n = 0; n < steps; ++n) {
+        rb.step(bodies, w, dt);
+        run.energyRise = std::max(run.energyRise, energy() - E0);
+        for (const Body& b : bodies)
+            run.maxSpeed = std::max(run.maxSpeed, b.velocity.norm() + b.angularVelocity.norm() * b.shape->boundingRadius);
+        if (each) each(n);
+    }
+    run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / steps;
+    return run;
+}
+
+// A magnet-like stack: `top` pulled down by 50 N (plus gravity) onto a fixed
+// 1 cm cube, released `gap` above it (lowest point), turned by `tilt` and
+// shifted sideways by `offset`.
+struct Stack {
+    Run run;
+    double penetration = 0; // 0.005 - lowest point of the top body (the base's top face is z = 0.005)
+    double deepest = 0;     // largest penetration during the run
+    double speed = 0, spin = 0;
+    double lateral = 0;     // sideways displacement of the top body
+    double impactSpeed = 0; // free fall from the gap: sqrt(2 a gap)
+    std::string describe;
+};
+inline Stack stack(const std::string& yaml, Body top, double dt, double tilt, double offset, double seconds = 0.4) {
+    auto rb = backend(yaml);
+    std::vector<Body> bodies = {cube("base", 0.01), std::move(top)};
+    bodies[0].fixed = true;
+    Body& t = bodies[1];
+    t.orientation = Quat(Eigen::AngleAxisd(tilt, Vec3(1, 0.3, 0).normalized()));
+    const double gap = 5e-4;
+    t.position = Vec3(offset, 0, 0);
+    t.position.z() = 0.005 + gap - lowestZ(t);
+    const Vec3 start = t.position;
+    rb->setup(bodies);
+    const Vec3 force(0, 0, -50), g(0, 0, -9.81);
+    Stack s;
+    s.run = simulate(*rb, bodies, g, force, dt, static_cast<int>(seconds / dt),
+                     [&](int) { s.deepest = std::max(s.deepest, 0.005 - lowestZ(t)); });
+    s.penetration = 0.005 - lowestZ(t);
+    s.speed = t.velocity.norm(), s.spin = t.angularVelocity.norm();
+    s.lateral = std::hypot(t.position.x() - start.x(), t.position.y() - start.y());
+    s.impactSpeed = std::sqrt(2 * (50 / t.mass() + 9.81) * gap);
+    s.describe = rb->describe();
+    return s;
+}
+
+} // namespace backendtest
