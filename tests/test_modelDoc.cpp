@@ -72,7 +72,7 @@ TEST_CASE("model doc: -doc lists every registered type, and for each exactly the
     std::set<std::string> names;
     for (const auto& d : docs) names.insert(d.name);
     // The standard modules: a missing one would be missing from -doc.
-    for (const char* t : {"MBM", "EDM", "hybrid", "LLG", "demag", "none", "ODE", "free", "uniform", "gradient"})
+    for (const char* t : {"MBM", "EDM", "hybrid", "LLG", "demag", "none", "ODE", "Bullet", "free", "uniform", "gradient"})
         CHECK(names.count(t));
 
     for (const auto& d : docs) {

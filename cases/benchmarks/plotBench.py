@@ -138,8 +138,9 @@ def table2():
     data = rows("table2")
     if not data:
         return
-    fig, ax = plt.subplots(figsize=(7.5, 4.2))
-    labels = [f"{pathlib.Path(r['case']).name}\n{r['bodies']} bodies, {r['threads']} thr." for r in data]
+    fig, ax = plt.subplots(figsize=(9, 4.2))
+    labels = [f"{pathlib.Path(r['case']).name.split('-')[0]}, {r['bodies']} bodies\n{r['threads']} thr., "
+              f"{r.get('backend') or ''}" for r in data]
     mag = [float(r["msMagnetic"]) for r in data]
     rigid = [float(r["msRigid"]) for r in data]
     x = range(len(data))

@@ -119,6 +119,11 @@ public:
         splitThreshold_ = c.get<double>("splitImpulseThreshold", -1e-5);
         if (!(splitThreshold_ <= 0)) c.fail("splitImpulseThreshold", "a penetration depth, <= 0 (m)");
         persistent_ = c.get<bool>("persistent", false);
+        stiffness_ = c.get<double>("stiffness", 0.0);
+        if (!(stiffness_ >= 0)) c.fail("stiffness", "a contact spring constant, >= 0 (N/m; 0: rigid contacts)");
+        damping_ = c.get<double>("damping", 0.0);
+        if (!(damping_ >= 0)) c.fail("damping", "a contact damping, >= 0 (N s/m)");
+        if (damping_ > 0 && stiffness_ == 0) c.fail("damping", "damping needs a contact stiffness");
         breakingShare_ = c.get<double>("breakingThreshold", 0.1);
         if (!(breakingShare_ > 0)) c.fail("breakingThreshold", "a share of the smallest body's bounding radius, > 0");
         c.reportUnused();
@@ -364,6 +369,7 @@ public:
         os << ", friction " << friction_ << ", restitution " << restitution_ << ", erp " << erp_ << ", margin "
            << margin_ << " m, " << iterations_ << " solver iterations, split impulse " << (splitImpulse_ ? "on" : "off")
            << ", contacts " << (persistent_ ? "persistent" : "found anew every sub-step") << ", subSteps " << subSteps_;
+        if (stiffness_ > 0) os << ", contact springs " << stiffness_ << " N/m, " << damping_ << " N s/m";
         std::map<std::string, int> count;
         for (const auto& [shape, holder] : shapes_) ++count[holder->kind];
         os << "; collision shapes:";
@@ -388,6 +394,9 @@ private:
     void setSurface(btRigidBody& b) const {
         b.setFriction(std::sqrt(friction_));
         b.setRestitution(std::sqrt(restitution_));
+        // Bullet combines two objects' stiffnesses as springs in series and
+        // adds their dampings: each gets 2 k and d / 2, a pair k and d.
+        if (stiffness_ > 0) b.setContactStiffnessAndDamping(2 * stiffness_, 0.5 * damping_);
         b.setRollingFriction(0);
         b.setSpinningFriction(0);
     }
@@ -532,7 +541,7 @@ private:
     Vec3 gravity_ = Vec3::Zero();
     std::optional<double> groundHeight_;
     double friction_ = 0.5, restitution_ = 0.1, bounceVelocity_ = 0.1, erp_ = 0.2, margin_ = 1e-5;
-    double breakingShare_ = 0.1, breakingThreshold_ = 0.02, splitThreshold_ = -1e-5, maxTravel_ = 0.1, ccdThreshold_ = 0.5, ccdRadius_ = 0.25;
+    double stiffness_ = 0, damping_ = 0, breakingShare_ = 0.1, breakingThreshold_ = 0.02, splitThreshold_ = -1e-5, maxTravel_ = 0.1, ccdThreshold_ = 0.5, ccdRadius_ = 0.25;
     int subSteps_ = 1, maxSubSteps_ = 1000, iterations_ = 50;
     bool splitImpulse_ = true, persistent_ = false, meshOnly_ = false;
 
@@ -569,6 +578,9 @@ const TypeDoc kDoc{
      {"contact.margin", "m", "collision margin around hulls and meshes (inside boxes and cylinders), > 0"},
      {"contact.splitImpulse", "-", "correct penetration by a separate impulse that adds no velocity"},
      {"contact.splitImpulseThreshold", "m", "penetration (<= 0) beyond which the split impulse is used"},
+     {"contact.stiffness", "N/m",
+      "a contact spring of this constant (penetrating contacts, as a soft body's); 0: rigid contacts"},
+     {"contact.damping", "N s/m", "the contact spring's damping (with stiffness)"},
      {"contact.breakingThreshold", "-",
       "Bullet's contact breaking threshold as a share of the smallest body's bounding radius, > 0"},
      {"contact.persistent", "-",

@@ -9,6 +9,12 @@
 //     steps: 20
 //     repeats: 2                                          # the best run is reported
 //     threads: [1, 0]                                     # 0 = all cores
+//     backends: [ODE, Bullet]                             # default: each case's own
+//
+// A backend other than the case's gets the case's rigidBody.yaml keys that
+// both backends read alike (gravity, ground, contact friction, restitution and
+// bounceVelocity, subSteps, maxTravel, maxSubSteps) and its own defaults (table2
+// steps without sleeping).
 #include "BenchCommon.hpp"
 #include "Studies.hpp"
 #include "ThreadStudies.hpp"
@@ -18,16 +24,37 @@
 #include <magFoam/MagneticSystem.hpp>
 #include <magFoam/RigidBodyBackend.hpp>
 
+#include <yaml-cpp/yaml.h>
+
 #include <chrono>
 #include <limits>
 
 namespace mag::bench {
+
+namespace {
+
+// The case's rigid-body dictionary for `type` (its own when it is that type).
+Dict rigidBodyAs(const Dict& own, const std::string& type) {
+    if (own.get<std::string>("type") == type) return own;
+    YAML::Node n;
+    n["type"] = type;
+    const YAML::Node& src = own.node();
+    for (const char* key : {"gravity", "ground", "subSteps", "maxTravel", "maxSubSteps"})
+        if (src[key]) n[key] = YAML::Clone(src[key]);
+    if (src["contact"])
+        for (const char* key : {"friction", "restitution", "bounceVelocity"})
+            if (src["contact"][key]) n["contact"][key] = YAML::Clone(src["contact"][key]);
+    return Dict::fromNode(n, own.file() + " (as " + type + ")");
+}
+
+} // namespace
 
 void tableTwoStudy(const Dict& study, const std::filesystem::path& caseDir) {
     const auto cases = study.get<std::vector<std::string>>("cases");
     const int steps = study.get<int>("steps", 20);
     const int repeats = study.get<int>("repeats", 2);
     const auto counts = threadCounts(study);
+    const auto backends = study.get<std::vector<std::string>>("backends", {});
     if (steps < 1) study.fail("steps", "steps must be >= 1");
     if (repeats < 1) study.fail("repeats", "repeats must be >= 1");
     study.reportUnused();
@@ -35,7 +62,7 @@ void tableTwoStudy(const Dict& study, const std::filesystem::path& caseDir) {
     using clock = std::chrono::steady_clock;
     auto since = [](clock::time_point t0) { return std::chrono::duration<double>(clock::now() - t0).count(); };
     const RestoreThreads restore;
-    auto csv = openCsv(caseDir, "table2.csv", "case,bodies,samples,threads,msMagnetic,msRigid");
+    auto csv = openCsv(caseDir, "table2.csv", "case,bodies,samples,threads,msMagnetic,msRigid,backend");
     for (const std::string& name : cases) {
         const Case c = Case::read(caseDir / name);
         const MagneticSystem magnets(c);
@@ -55,31 +82,37 @@ void tableTwoStudy(const Dict& study, const std::filesystem::path& caseDir) {
             std::vector<Body> warm = c.bodies();  // builds the per-shape tables outside the timing
             (void)magnets.step(warm);
         }
-        for (int t : counts) {
-            setThreads(t);
-            // A fresh backend and the initial state per run: every run takes the same
-            // steps. The best of `repeats` runs (other jobs only ever add time).
-            double magnetic = std::numeric_limits<double>::infinity(), rigid = magnetic;
-            for (int r = 0; r < repeats; ++r) {
-                std::vector<Body> bodies = c.bodies();
-                const auto backend = RigidBodyBackend::New(c.rigidBody());
-                backend->setup(bodies);
-                double m = 0, b = 0;
-                for (int k = 0; k < steps; ++k) {
-                    const auto tm = clock::now();
-                    const MagneticSystem::Step s = magnets.step(bodies);
-                    m += since(tm);
-                    const auto tr = clock::now();
-                    backend->step(bodies, s.wrenches, dt);
-                    b += since(tr);
+        std::vector<Dict> rigidBodies;
+        if (backends.empty()) rigidBodies.push_back(c.rigidBody());
+        for (const std::string& type : backends) rigidBodies.push_back(rigidBodyAs(c.rigidBody(), type));
+        for (const Dict& rigidBody : rigidBodies) {
+            for (int t : counts) {
+                setThreads(t);
+                const std::string type = rigidBody.get<std::string>("type");
+                // A fresh backend and the initial state per run: every run takes the same
+                // steps. The best of `repeats` runs (other jobs only ever add time).
+                double magnetic = std::numeric_limits<double>::infinity(), rigid = magnetic;
+                for (int r = 0; r < repeats; ++r) {
+                    std::vector<Body> bodies = c.bodies();
+                    const auto backend = RigidBodyBackend::New(rigidBody);
+                    backend->setup(bodies);
+                    double m = 0, b = 0;
+                    for (int k = 0; k < steps; ++k) {
+                        const auto tm = clock::now();
+                        const MagneticSystem::Step s = magnets.step(bodies);
+                        m += since(tm);
+                        const auto tr = clock::now();
+                        backend->step(bodies, s.wrenches, dt);
+                        b += since(tr);
+                    }
+                    magnetic = std::min(magnetic, m), rigid = std::min(rigid, b);
                 }
-                magnetic = std::min(magnetic, m), rigid = std::min(rigid, b);
+                const double msMagnetic = 1e3 * magnetic / steps, msRigid = 1e3 * rigid / steps;
+                csv << '"' << name << "\"," << c.bodies().size() << ',' << samples << ',' << t << ',' << msMagnetic << ','
+                    << msRigid << ',' << type << '\n';
+                spdlog::info("  {:<28} bodies {:3}  samples {:6}  threads {}  ms per step: magnetic {:8.4f}  rigid {:8.4f} ({})",
+                             name, c.bodies().size(), samples, t, msMagnetic, msRigid, type);
             }
-            const double msMagnetic = 1e3 * magnetic / steps, msRigid = 1e3 * rigid / steps;
-            csv << '"' << name << "\"," << c.bodies().size() << ',' << samples << ',' << t << ',' << msMagnetic << ','
-                << msRigid << '\n';
-            spdlog::info("  {:<28} bodies {:3}  samples {:6}  threads {}  ms per step: magnetic {:8.4f}  rigid {:8.4f}",
-                         name, c.bodies().size(), samples, t, msMagnetic, msRigid);
         }
     }
 }
