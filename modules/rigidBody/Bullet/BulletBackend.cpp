@@ -113,6 +113,8 @@ public:
         if (!(bounceVelocity_ >= 0)) c.fail("bounceVelocity", "bounceVelocity must be >= 0 (m/s)");
         erp_ = c.get<double>("erp", 0.2);
         if (!(erp_ > 0 && erp_ <= 1)) c.fail("erp", "erp must be in (0, 1]");
+        surfaceLayer_ = c.get<double>("surfaceLayer", 1e-6);
+        if (!(surfaceLayer_ >= 0)) c.fail("surfaceLayer", "surfaceLayer must be >= 0 (m)");
         margin_ = c.get<double>("margin", 1e-5);
         if (!(margin_ > 0)) c.fail("margin", "margin must be > 0 (m)");
         splitImpulse_ = c.get<bool>("splitImpulse", true);
@@ -172,6 +174,10 @@ public:
         info.m_splitImpulse = splitImpulse_ ? 1 : 0;
         info.m_splitImpulsePenetrationThreshold = splitThreshold_;
         info.m_restitutionVelocityThreshold = bounceVelocity_;
+        // Penetration left uncorrected: a resting face then touches with all its
+        // corners (a box-box contact takes only penetrating points; corrected to
+        // zero, the corners drop in and out and the body rocks).
+        info.m_linearSlop = surfaceLayer_;
         if (!persistent_) info.m_solverMode &= ~SOLVER_USE_WARMSTARTING;
 
         if (groundHeight_) {
@@ -541,7 +547,7 @@ private:
     Vec3 gravity_ = Vec3::Zero();
     std::optional<double> groundHeight_;
     double friction_ = 0.5, restitution_ = 0.1, bounceVelocity_ = 0.1, erp_ = 0.2, margin_ = 1e-5;
-    double stiffness_ = 0, damping_ = 0, breakingShare_ = 0.1, breakingThreshold_ = 0.02, splitThreshold_ = -1e-5, maxTravel_ = 0.1, ccdThreshold_ = 0.5, ccdRadius_ = 0.25;
+    double surfaceLayer_ = 1e-6, stiffness_ = 0, damping_ = 0, breakingShare_ = 0.1, breakingThreshold_ = 0.02, splitThreshold_ = -1e-5, maxTravel_ = 0.1, ccdThreshold_ = 0.5, ccdRadius_ = 0.25;
     int subSteps_ = 1, maxSubSteps_ = 1000, iterations_ = 50;
     bool splitImpulse_ = true, persistent_ = false, meshOnly_ = false;
 
@@ -575,6 +581,7 @@ const TypeDoc kDoc{
      {"contact.restitution", "-", "0..1"},
      {"contact.bounceVelocity", "m/s", "slower impacts do not bounce"},
      {"contact.erp", "-", "share of the penetration corrected per sub-step, (0, 1]"},
+     {"contact.surfaceLayer", "m", "penetration left uncorrected, >= 0 (resting faces touch with all corners)"},
      {"contact.margin", "m", "collision margin around hulls and meshes (inside boxes and cylinders), > 0"},
      {"contact.splitImpulse", "-", "correct penetration by a separate impulse that adds no velocity"},
      {"contact.splitImpulseThreshold", "m", "penetration (<= 0) beyond which the split impulse is used"},
