@@ -33,6 +33,7 @@
 // Restart state (<time>/rigidBody.yaml): each body's rotation matrix as
 // Bullet holds it (the quaternion written in bodies.yaml is derived from it,
 // and turning it back into a matrix would change its last bits).
+#include <magFoam/ContactSettings.hpp>
 #include <magFoam/Error.hpp>
 #include <magFoam/Log.hpp>
 #include <magFoam/ResultsWriter.hpp>
@@ -98,23 +99,8 @@ struct ShapeHolder {
 class BulletBackend final : public RigidBodyBackend {
 public:
     explicit BulletBackend(const Dict& d) {
-        gravity_ = d.get<Vec3>("gravity", Vec3::Zero());
-        if (d.has("ground")) {
-            const Dict g = d.sub("ground");
-            groundHeight_ = g.get<double>("height", 0.0);
-            g.reportUnused();
-        }
         const Dict c = d.subOrEmpty("contact");
-        friction_ = c.get<double>("friction", 0.5);
-        if (!(friction_ >= 0)) c.fail("friction", "friction coefficient must be >= 0");
-        restitution_ = c.get<double>("restitution", 0.1);
-        if (!(restitution_ >= 0 && restitution_ <= 1)) c.fail("restitution", "restitution must be in [0, 1]");
-        bounceVelocity_ = c.get<double>("bounceVelocity", 0.1);
-        if (!(bounceVelocity_ >= 0)) c.fail("bounceVelocity", "bounceVelocity must be >= 0 (m/s)");
-        erp_ = c.get<double>("erp", 0.2);
-        if (!(erp_ > 0 && erp_ <= 1)) c.fail("erp", "erp must be in (0, 1]");
-        surfaceLayer_ = c.get<double>("surfaceLayer", 1e-6);
-        if (!(surfaceLayer_ >= 0)) c.fail("surfaceLayer", "surfaceLayer must be >= 0 (m)");
+        s_ = ContactSettings::read(d, c);
         margin_ = c.get<double>("margin", 1e-5);
         if (!(margin_ > 0)) c.fail("margin", "margin must be > 0 (m)");
         splitImpulse_ = c.get<bool>("splitImpulse", true);
@@ -130,13 +116,6 @@ public:
         if (!(breakingShare_ > 0)) c.fail("breakingThreshold", "a share of the smallest body's bounding radius, > 0");
         c.reportUnused();
 
-        subSteps_ = d.get<int>("subSteps", 1);
-        if (subSteps_ < 1 || subSteps_ > 10000) d.fail("subSteps", "subSteps must be 1..10000");
-        maxTravel_ = d.get<double>("maxTravel", 0.1);
-        if (!(maxTravel_ >= 0)) d.fail("maxTravel", "maxTravel must be >= 0 (0: fixed subSteps)");
-        maxSubSteps_ = d.get<int>("maxSubSteps", 1000);
-        if (maxSubSteps_ < subSteps_ || maxSubSteps_ > 100000)
-            d.fail("maxSubSteps", "maxSubSteps must be subSteps..100000");
         iterations_ = d.get<int>("solverIterations", 50);
         if (iterations_ < 1 || iterations_ > 10000) d.fail("solverIterations", "solverIterations must be 1..10000");
         meshOnly_ = d.getWord("collisionShapes", {"auto", "mesh"}, "auto") == "mesh";
@@ -167,21 +146,21 @@ public:
         solver_ = std::make_unique<btSequentialImpulseConstraintSolver>();
         world_ = std::make_unique<btDiscreteDynamicsWorld>(dispatcher_.get(), broadphase_.get(), solver_.get(),
                                                            config_.get());
-        world_->setGravity(bt(gravity_));
+        world_->setGravity(bt(s_.gravity));
         btContactSolverInfo& info = world_->getSolverInfo();
         info.m_numIterations = iterations_;
-        info.m_erp2 = erp_;
+        info.m_erp2 = s_.erp;
         info.m_splitImpulse = splitImpulse_ ? 1 : 0;
         info.m_splitImpulsePenetrationThreshold = splitThreshold_;
-        info.m_restitutionVelocityThreshold = bounceVelocity_;
+        info.m_restitutionVelocityThreshold = s_.bounceVelocity;
         // Penetration left uncorrected: a resting face then touches with all its
         // corners (a box-box contact takes only penetrating points; corrected to
         // zero, the corners drop in and out and the body rocks).
-        info.m_linearSlop = surfaceLayer_;
+        info.m_linearSlop = s_.surfaceLayer;
         if (!persistent_) info.m_solverMode &= ~SOLVER_USE_WARMSTARTING;
 
-        if (groundHeight_) {
-            groundShape_ = std::make_unique<btStaticPlaneShape>(btVector3(0, 0, 1), *groundHeight_);
+        if (s_.groundHeight) {
+            groundShape_ = std::make_unique<btStaticPlaneShape>(btVector3(0, 0, 1), *s_.groundHeight);
             btRigidBody::btRigidBodyConstructionInfo ci(0, nullptr, groundShape_.get());
             ground_ = std::make_unique<btRigidBody>(ci);
             setSurface(*ground_);
@@ -369,12 +348,12 @@ public:
 
     std::string describe() const override {
         std::ostringstream os;
-        os << "Bullet " << btGetVersion() << " (double), gravity [" << gravity_.x() << ", " << gravity_.y() << ", "
-           << gravity_.z() << "] m/s^2";
-        if (groundHeight_) os << ", ground z = " << *groundHeight_;
-        os << ", friction " << friction_ << ", restitution " << restitution_ << ", erp " << erp_ << ", margin "
+        os << "Bullet " << btGetVersion() << " (double), gravity [" << s_.gravity.x() << ", " << s_.gravity.y() << ", "
+           << s_.gravity.z() << "] m/s^2";
+        if (s_.groundHeight) os << ", ground z = " << *s_.groundHeight;
+        os << ", friction " << s_.friction << ", restitution " << s_.restitution << ", erp " << s_.erp << ", margin "
            << margin_ << " m, " << iterations_ << " solver iterations, split impulse " << (splitImpulse_ ? "on" : "off")
-           << ", contacts " << (persistent_ ? "persistent" : "found anew every sub-step") << ", subSteps " << subSteps_;
+           << ", contacts " << (persistent_ ? "persistent" : "found anew every sub-step") << ", subSteps " << s_.subSteps;
         if (stiffness_ > 0) os << ", contact springs " << stiffness_ << " N/m, " << damping_ << " N s/m";
         std::map<std::string, int> count;
         for (const auto& [shape, holder] : shapes_) ++count[holder->kind];
@@ -398,8 +377,8 @@ private:
     };
 
     void setSurface(btRigidBody& b) const {
-        b.setFriction(std::sqrt(friction_));
-        b.setRestitution(std::sqrt(restitution_));
+        b.setFriction(std::sqrt(s_.friction));
+        b.setRestitution(std::sqrt(s_.restitution));
         // Bullet combines two objects' stiffnesses as springs in series and
         // adds their dampings: each gets 2 k and d / 2, a pair k and d.
         if (stiffness_ > 0) b.setContactStiffnessAndDamping(2 * stiffness_, 0.5 * damping_);
@@ -416,18 +395,17 @@ private:
     // Sub-steps so that no body travels more than maxTravel of its bounding
     // radius in one (as the ODE backend).
     int subStepsFor(std::span<const Wrench> wrenches, double dt) const {
-        if (maxTravel_ <= 0) return subSteps_;
+        if (s_.maxTravel <= 0) return s_.subSteps;
         double worst = 0;
         for (std::size_t i = 0; i < entries_.size(); ++i) {
             const Entry& e = entries_[i];
             if (e.fixed || e.asleep || !(e.scale > 0)) continue;
             const Vec3 v = eig(e.body->getLinearVelocity()), w = eig(e.body->getAngularVelocity());
-            const Vec3 a = wrenches[i].force / e.mass + gravity_;
+            const Vec3 a = wrenches[i].force / e.mass + s_.gravity;
             const double travel = (v.norm() + w.norm() * e.scale) * dt + 0.5 * a.norm() * dt * dt;
             worst = std::max(worst, travel / e.scale);
         }
-        const double wanted = std::ceil(worst / maxTravel_);
-        return wanted > subSteps_ ? static_cast<int>(std::min<double>(wanted, maxSubSteps_)) : subSteps_;
+        return s_.subStepsFor(worst);
     }
 
     // Drop every pair's collision algorithm and manifold: the next sub-step
@@ -544,11 +522,10 @@ private:
     }
 
     // Settings.
-    Vec3 gravity_ = Vec3::Zero();
-    std::optional<double> groundHeight_;
-    double friction_ = 0.5, restitution_ = 0.1, bounceVelocity_ = 0.1, erp_ = 0.2, margin_ = 1e-5;
-    double surfaceLayer_ = 1e-6, stiffness_ = 0, damping_ = 0, breakingShare_ = 0.1, breakingThreshold_ = 0.02, splitThreshold_ = -1e-5, maxTravel_ = 0.1, ccdThreshold_ = 0.5, ccdRadius_ = 0.25;
-    int subSteps_ = 1, maxSubSteps_ = 1000, iterations_ = 50;
+    ContactSettings s_;
+    double margin_ = 1e-5, stiffness_ = 0, damping_ = 0, breakingShare_ = 0.1, breakingThreshold_ = 0.02;
+    double splitThreshold_ = -1e-5, ccdThreshold_ = 0.5, ccdRadius_ = 0.25;
+    int iterations_ = 50;
     bool splitImpulse_ = true, persistent_ = false, meshOnly_ = false;
 
     // Bullet objects (destroyed in reverse order of creation).

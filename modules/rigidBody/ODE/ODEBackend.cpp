@@ -87,6 +87,7 @@
 // and restored at a restart, which then continues bit for bit.
 #include "ContactManifold.hpp"
 
+#include <magFoam/ContactSettings.hpp>
 #include <magFoam/Error.hpp>
 #include <magFoam/Log.hpp>
 #include <magFoam/RigidBodyBackend.hpp>
@@ -296,40 +297,18 @@ ode::GeomView geomView(dGeomID g, const CollisionShape& cs) {
 class ODEBackend final : public RigidBodyBackend {
 public:
     explicit ODEBackend(const Dict& d) {
-        gravity_ = d.get<Vec3>("gravity", Vec3::Zero());
-        if (d.has("ground")) {
-            const Dict g = d.sub("ground");
-            groundHeight_ = g.get<double>("height", 0.0);
-            g.reportUnused();
-        }
         const Dict c = d.subOrEmpty("contact");
-        friction_ = c.get<double>("friction", 0.5);
-        if (!(friction_ >= 0)) c.fail("friction", "friction coefficient must be >= 0");
-        restitution_ = c.get<double>("restitution", 0.1);
-        if (!(restitution_ >= 0 && restitution_ <= 1)) c.fail("restitution", "restitution must be in [0, 1]");
-        bounceVelocity_ = c.get<double>("bounceVelocity", 0.1);
-        if (!(bounceVelocity_ >= 0)) c.fail("bounceVelocity", "bounceVelocity must be >= 0 (m/s)");
-        erp_ = c.get<double>("erp", 0.2);
-        if (!(erp_ > 0 && erp_ <= 1)) c.fail("erp", "erp must be in (0, 1]");
+        s_ = ContactSettings::read(d, c);
         cfm_ = c.get<double>("cfm", 1e-9);
         if (!(cfm_ >= 0)) c.fail("cfm", "cfm must be >= 0");
         maxContacts_ = c.get<int>("maxContacts", 8);
         if (maxContacts_ < 1 || maxContacts_ > 64) c.fail("maxContacts", "maxContacts must be 1..64");
-        surfaceLayer_ = c.get<double>("surfaceLayer", 1e-6);
-        if (!(surfaceLayer_ >= 0)) c.fail("surfaceLayer", "surfaceLayer must be >= 0 (m)");
         maxCorrectingVelocity_ = c.get<double>("maxCorrectingVelocity", 0.1);
         if (!(maxCorrectingVelocity_ > 0)) c.fail("maxCorrectingVelocity", "maxCorrectingVelocity must be > 0 (m/s)");
         meshCorrection_ = c.get<bool>("meshCorrection", true);
 
         c.reportUnused();
 
-        subSteps_ = d.get<int>("subSteps", 1);
-        if (subSteps_ < 1 || subSteps_ > 10000) d.fail("subSteps", "subSteps must be 1..10000");
-        maxTravel_ = d.get<double>("maxTravel", 0.1);
-        if (!(maxTravel_ >= 0)) d.fail("maxTravel", "maxTravel must be >= 0 (0: fixed subSteps)");
-        maxSubSteps_ = d.get<int>("maxSubSteps", 1000);
-        if (maxSubSteps_ < subSteps_ || maxSubSteps_ > 100000)
-            d.fail("maxSubSteps", "maxSubSteps must be subSteps..100000");
         quickStep_ = d.getWord("stepper", {"step", "quickStep"}, "step") == "quickStep";
         iterations_ = d.get<int>("iterations", 20);
         if (iterations_ < 1 || iterations_ > 10000) d.fail("iterations", "iterations must be 1..10000");
@@ -350,16 +329,16 @@ public:
         initODE();
         destroyWorld();
         world_ = dWorldCreate();
-        dWorldSetGravity(world_, gravity_.x(), gravity_.y(), gravity_.z());
-        dWorldSetERP(world_, erp_);
+        dWorldSetGravity(world_, s_.gravity.x(), s_.gravity.y(), s_.gravity.z());
+        dWorldSetERP(world_, s_.erp);
         dWorldSetCFM(world_, cfm_);
         dWorldSetContactMaxCorrectingVel(world_, maxCorrectingVelocity_);
-        dWorldSetContactSurfaceLayer(world_, surfaceLayer_);
+        dWorldSetContactSurfaceLayer(world_, s_.surfaceLayer);
         dWorldSetAutoDisableFlag(world_, 0);
         dWorldSetQuickStepNumIterations(world_, iterations_);
         space_ = bodies.size() > 32 ? dHashSpaceCreate(nullptr) : dSimpleSpaceCreate(nullptr);
         group_ = dJointGroupCreate(0);
-        if (groundHeight_) dCreatePlane(space_, 0, 0, 1, *groundHeight_);
+        if (s_.groundHeight) dCreatePlane(space_, 0, 0, 1, *s_.groundHeight);
         rng_ = seed_;
 
         entries_.assign(bodies.size(), Entry{});
@@ -538,10 +517,10 @@ public:
     std::string describe() const override {
         std::ostringstream os;
         os << "ODE " << (quickStep_ ? "dWorldQuickStep (" + std::to_string(iterations_) + " iterations)" : "dWorldStep")
-           << ", gravity [" << gravity_.x() << ", " << gravity_.y() << ", " << gravity_.z() << "] m/s^2";
-        if (groundHeight_) os << ", ground z = " << *groundHeight_;
-        os << ", friction " << friction_ << ", restitution " << restitution_ << ", erp " << erp_ << ", cfm " << cfm_
-           << ", maxContacts " << maxContacts_ << ", subSteps " << subSteps_;
+           << ", gravity [" << s_.gravity.x() << ", " << s_.gravity.y() << ", " << s_.gravity.z() << "] m/s^2";
+        if (s_.groundHeight) os << ", ground z = " << *s_.groundHeight;
+        os << ", friction " << s_.friction << ", restitution " << s_.restitution << ", erp " << s_.erp << ", cfm " << cfm_
+           << ", maxContacts " << maxContacts_ << ", subSteps " << s_.subSteps;
         // Bodies per collision shape, then (once stepping) what the steps did.
         std::map<std::string, int> count;
         for (const Entry& e : entries_)
@@ -587,7 +566,7 @@ private:
     // more than maxTravel times its bounding radius in one sub-step (velocity,
     // spin and the external acceleration; contacts ignored, so conservative).
     int subStepsFor(std::span<const Wrench> wrenches, double dt) const {
-        if (maxTravel_ <= 0) return subSteps_;
+        if (s_.maxTravel <= 0) return s_.subSteps;
         double worst = 0;
         for (std::size_t i = 0; i < entries_.size(); ++i) {
             const Entry& e = entries_[i];
@@ -595,13 +574,12 @@ private:
             const double r = e.scale;
             const dReal* v = dBodyGetLinearVel(e.body);
             const dReal* w = dBodyGetAngularVel(e.body);
-            const Vec3 a = wrenches[i].force / e.mass + gravity_;
+            const Vec3 a = wrenches[i].force / e.mass + s_.gravity;
             const double travel = (Vec3(v[0], v[1], v[2]).norm() + Vec3(w[0], w[1], w[2]).norm() * r) * dt +
                                   0.5 * a.norm() * dt * dt;
             worst = std::max(worst, travel / r);
         }
-        const double wanted = std::ceil(worst / maxTravel_);
-        return wanted > subSteps_ ? static_cast<int>(std::min<double>(wanted, maxSubSteps_)) : subSteps_;
+        return s_.subStepsFor(worst);
     }
 
     static void nearCallback(void* self, dGeomID a, dGeomID b) { static_cast<ODEBackend*>(self)->collide(a, b); }
@@ -630,7 +608,7 @@ private:
             const double scale = std::min(e1->collision->scale, e2->collision->scale);
             stats_.contactsDropped += ode::correctMeshContacts(contacts_, geomView(g1, *e1->collision),
                                                                geomView(g2, *e2->collision), 0.02 * scale,
-                                                               surfaceLayer_ + 1e-6 * scale);
+                                                               s_.surfaceLayer + 1e-6 * scale);
         }
         // Merge coincident contacts, keep at most maxContacts.
         const double scale = std::min(e1 ? e1->collision->scale : std::numeric_limits<double>::infinity(),
@@ -645,11 +623,11 @@ private:
             for (int k = 0; k < 3; ++k) joint.geom.pos[k] = c.position[k], joint.geom.normal[k] = c.normal[k];
             joint.geom.depth = c.depth;
             joint.surface.mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM;
-            if (restitution_ > 0) joint.surface.mode |= dContactBounce;
-            joint.surface.mu = friction_;
-            joint.surface.bounce = restitution_;
-            joint.surface.bounce_vel = bounceVelocity_;
-            joint.surface.soft_erp = erp_;
+            if (s_.restitution > 0) joint.surface.mode |= dContactBounce;
+            joint.surface.mu = s_.friction;
+            joint.surface.bounce = s_.restitution;
+            joint.surface.bounce_vel = s_.bounceVelocity;
+            joint.surface.soft_erp = s_.erp;
             joint.surface.soft_cfm = cfm_;
             dJointAttach(dJointCreateContact(world_, group_, &joint), b1, b2);
         }
@@ -805,12 +783,9 @@ private:
     }
 
     // Settings.
-    Vec3 gravity_ = Vec3::Zero();
-    std::optional<double> groundHeight_;
-    double friction_ = 0.5, restitution_ = 0.1, bounceVelocity_ = 0.1, erp_ = 0.2, cfm_ = 1e-9;
-    double surfaceLayer_ = 1e-6, maxCorrectingVelocity_ = 0.1;
-    double maxTravel_ = 0.1;
-    int maxContacts_ = 8, subSteps_ = 1, maxSubSteps_ = 1000, iterations_ = 20;
+    ContactSettings s_;
+    double cfm_ = 1e-9, maxCorrectingVelocity_ = 0.1;
+    int maxContacts_ = 8, iterations_ = 20;
     bool quickStep_ = false, meshOnly_ = false, meshCorrection_ = true;
     unsigned long seed_ = 0, rng_ = 0;
 
