@@ -112,6 +112,14 @@ std::string formatExact(const Vec3& v) {
     return buf;
 }
 
+std::size_t stateBodyIndex(const Dict& entry, const std::vector<Body>& bodies) {
+    const std::string name = entry.get<std::string>("name");
+    std::size_t i = 0;
+    while (i < bodies.size() && bodies[i].name != name) ++i;
+    if (i == bodies.size()) entry.fail("name", "body '" + name + "' is not in constant/bodies.yaml");
+    return i;
+}
+
 RestartState readState(const std::filesystem::path& file, std::vector<Body>& bodies) {
     std::error_code ec;
     if (std::filesystem::is_regular_file(file, ec) && std::filesystem::file_size(file, ec) == 0 && !ec)
@@ -122,10 +130,8 @@ RestartState readState(const std::filesystem::path& file, std::vector<Body>& bod
     s.step = d.get<int>("step");
     std::vector<bool> seen(bodies.size(), false);
     for (const Dict& b : d.list("bodies")) {
-        const std::string name = b.get<std::string>("name");
-        std::size_t i = 0;
-        while (i < bodies.size() && bodies[i].name != name) ++i;
-        if (i == bodies.size()) b.fail("name", "body '" + name + "' is not in constant/bodies.yaml");
+        const std::size_t i = stateBodyIndex(b, bodies);
+        const std::string& name = bodies[i].name;
         Body& body = bodies[i];
         body.position = b.get<Vec3>("position");
         body.orientation = exactOrientation(b);

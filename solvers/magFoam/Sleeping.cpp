@@ -282,10 +282,7 @@ void Sleeping::readState(const Dict& d, std::vector<Body>& bodies, RigidBodyBack
         return;
     }
     for (const Dict& b : d.list("bodies")) {
-        const std::string name = b.get<std::string>("name");
-        std::size_t i = 0;
-        while (i < bodies.size() && bodies[i].name != name) ++i;
-        if (i == bodies.size()) b.fail("name", "body '" + name + "' is not in constant/bodies.yaml");
+        const std::size_t i = stateBodyIndex(b, bodies);
         asleep_[i] = b.get<bool>("asleep");
         calm_[i].seconds = b.get<double>("calm");
         calm_[i].reference = readWrench(b.sub("reference"));

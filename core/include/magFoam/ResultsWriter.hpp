@@ -70,6 +70,10 @@ struct RestartState {
 // is empty, a body is missing or a value is not finite.
 RestartState readState(const std::filesystem::path& file, std::vector<Body>& bodies);
 
+// The body an entry of a state file's `bodies:` list names (its `name`);
+// InputError at that key when no body of the case has it.
+std::size_t stateBodyIndex(const Dict& entry, const std::vector<Body>& bodies);
+
 // Numbers for the restart files: 17 significant digits ("%.17g"), which
 // strtod (Dict) reads back bit for bit. formatExact(Vec3) is "[x, y, z]".
 std::string formatExact(double x);

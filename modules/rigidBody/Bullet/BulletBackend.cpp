@@ -321,10 +321,8 @@ public:
             return;
         }
         for (const Dict& b : d.list("bodies")) {
-            const std::string name = b.get<std::string>("name");
-            std::size_t i = 0;
-            while (i < bodies.size() && bodies[i].name != name) ++i;
-            if (i == bodies.size()) b.fail("name", "body '" + name + "' is not in constant/bodies.yaml");
+            const std::size_t i = stateBodyIndex(b, bodies);
+            const std::string& name = bodies[i].name;
             const auto rows = b.get<std::vector<std::vector<double>>>("basis");
             if (rows.size() != 3 || rows[0].size() != 3 || rows[1].size() != 3 || rows[2].size() != 3)
                 b.fail("basis", "a 3 x 3 rotation matrix, three rows of three numbers");
