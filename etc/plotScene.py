@@ -365,6 +365,29 @@ def initial_quat(o, where):
     return q / np.linalg.norm(q)
 
 
+def compound_triangles(b, case, where, cache):
+    """The body-frame triangles of a compound (`parts:`; docs/compound-bodies.md):
+    each part's placed in the layout, the whole moved to the compound's centre
+    of mass (each part weighted by its material's density)."""
+    materials = read_yaml(case / "constant/materials.yaml") or {}
+    placed, masses, centres = [], [], []
+    for k, part in enumerate(b["parts"]):
+        pw = f"{where}.parts[{k}]"
+        tri = body_triangles(part.get("geometry"), case / "constant", pw + ".geometry", cache)
+        v0, v1, v2 = tri[:, 0], tri[:, 1], tri[:, 2]
+        volume = abs(np.einsum("ij,ij->i", v0, np.cross(v1, v2)).sum() / 6)
+        material = materials.get(part.get("material"))
+        if not isinstance(material, dict):
+            raise SceneError(f"{pw}: material {part.get('material')!r} is not in constant/materials.yaml")
+        R = quat_matrix(*initial_quat(part.get("orientation"), pw))
+        p = np.array(part.get("position", [0, 0, 0]), dtype=float).reshape(3)
+        placed.append(tri @ R.T + p)
+        masses.append(float(material["density"]) * volume)
+        centres.append(p)
+    com = (np.array(masses)[:, None] * np.array(centres)).sum(0) / sum(masses)
+    return np.concatenate(placed) - com
+
+
 def load_scene(case):
     """[(name, body-frame triangles, fixed, initial pose [x y z qw qx qy qz])]"""
     path = case / "constant/bodies.yaml"
@@ -375,7 +398,10 @@ def load_scene(case):
     for i, b in enumerate((spec or {}).get("bodies") or []):
         where = f"{path}: bodies[{i}] ('{b.get('name', '?')}')"
         try:
-            tri = body_triangles(b.get("geometry"), case / "constant", where + ".geometry", cache)
+            if "parts" in b:
+                tri = compound_triangles(b, case, where, cache)
+            else:
+                tri = body_triangles(b.get("geometry"), case / "constant", where + ".geometry", cache)
             pose = np.concatenate([np.array(b.get("position", [0, 0, 0]), dtype=float).reshape(3),
                                    initial_quat(b.get("orientation"), where)])
             bodies.append((str(b["name"]), tri, b.get("motion", "dynamic") == "fixed", pose))

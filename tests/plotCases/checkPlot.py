@@ -28,6 +28,8 @@ PRIMITIVES = {
               -(10 * S30 + 6 * C30) / 2, (10 * S30 + 6 * C30) / 2, 8, 12),
     "ball": (-4, 4, -4, 4, 6, 14),  # radius 4 mm at (0, 0, 10)
     "rod": (17, 23, -6, 6, 7, 13),  # radius 3, height 12, axis turned onto y, at (20, 0, 10)
+    # two 10 mm cubes side by side (7500 and 1500 kg/m3), their centre of mass at (0, 40, 10)
+    "pair": (-10 + 10 / 3, 10 + 10 / 3, 35, 45, 5, 15),
 }
 R2 = 50 * 2 ** 0.5 / 10  # half the diagonal of a 10 mm face
 MESHES = {
