@@ -36,7 +36,10 @@ function(mag_add_module_test name)
     target_link_libraries(${name} PRIVATE magOracles)
   endif()
   set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/tests)
+  # -w NoTests: a test whose name filter matches no test case fails instead of
+  # passing with nothing run (a ';' in a name splits it into such filters).
   catch_discover_tests(${name} WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}
+    EXTRA_ARGS -w NoTests
     PROPERTIES ENVIRONMENT "MAG_BUILD_DIR=${CMAKE_BINARY_DIR}")
   set_property(GLOBAL APPEND PROPERTY MAG_TEST_TARGETS ${name})
 endfunction()

@@ -124,7 +124,7 @@ TEST_CASE("Bullet: restitution and friction follow their closed forms", "[bullet
     }
 }
 
-TEST_CASE("Bullet: fixed bodies never move; a cube pulled onto a fixed cube by 50 N rests", "[bulletBackend]") {
+TEST_CASE("Bullet: fixed bodies never move, a cube pulled onto a fixed cube by 50 N rests", "[bulletBackend]") {
     {
         auto rb = backend("type: Bullet\ngravity: [0, 0, -9.81]\n");
         std::vector<Body> bodies = {cube("base", 0.01), cube("hammer", 0.01)};

@@ -185,7 +185,7 @@ double flyByDrift(const std::string& material, const std::string& schemes, const
 
 } // namespace
 
-TEST_CASE("demag: a soft rod slung past a magnet conserves energy; the drift falls with the tolerance", "[demag]") {
+TEST_CASE("demag: a soft rod slung past a magnet conserves energy, the drift falls with the tolerance", "[demag]") {
     // The bar: |drift| <= 1e-3 of the peak kinetic energy. Measured
     // (MBM adaptive tolerance 1e-4, the default): 2.3e-5; spinning at 200
     // rad/s: 1.7e-5. By tolerance: 1e-2 1.8e-4, 1e-5 6.0e-6.

@@ -115,7 +115,7 @@ TEST_CASE("far field: momentum and angular momentum are conserved", "[farField]"
     CHECK(L.norm() <= 1e-13 * lScale);
 }
 
-TEST_CASE("far field: bit-identical for 1, 2 and 3 threads; NaN stays out", "[farField][threads]") {
+TEST_CASE("far field: bit-identical for 1, 2 and 3 threads, NaN stays out", "[farField][threads]") {
     RestoreThreads restore;
     auto bodies = randomBodies(250, 4);
     bodies[7].position = Vec3(std::nan(""), 0, 0);

@@ -320,7 +320,7 @@ TEST_CASE("LLG: an unconverged loop is reported with the body names", "[LLG]") {
     CHECK(d.bodies[1].magnetizationBody == before);
 }
 
-TEST_CASE("LLG: only soft bodies change; no soft body, no work", "[LLG]") {
+TEST_CASE("LLG: only soft bodies change, no soft body, no work", "[LLG]") {
     auto model = llg();
     UniformCase c = uniformCase(0.5, Vec3::UnitZ(), Vec3::Zero());
     const Vec3 src = c.bodies[0].magnetizationBody;
@@ -441,7 +441,7 @@ TEST_CASE("LLG: a soft body between two magnets converges to its local equilibri
     }
 }
 
-TEST_CASE("LLG: a chain of soft bodies converges; iterations reported", "[LLG]") {
+TEST_CASE("LLG: a chain of soft bodies converges, iterations reported", "[LLG]") {
     // A 1 cm cube magnet (+z) with a chain of 5 soft balls (R = 2.5 mm, 0.1 mm apart)
     // standing on its top face: the balls magnetize each other.
     auto field = mag::FieldEvaluator::New(mag::Dict::fromString("type: MBM", "test"));

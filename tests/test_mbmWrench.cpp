@@ -399,7 +399,7 @@ TEST_CASE("gauss rule: force between coaxial cubes vs Akoun-Yonnet at every gap"
         CHECK(-coaxialForce(cube, gauss.at(20), d, OverlapModel::charge) == Approx(F).epsilon(5e-4)); // 4-digit values
 }
 
-TEST_CASE("overlap: charge follows Akoun-Yonnet, amperian its energy force; full overlap is 0",
+TEST_CASE("overlap: charge follows Akoun-Yonnet, amperian its energy force, full overlap is 0",
           "[mbm][wrench]") {
     const Mesh m = boxMesh(Vec3(kCube / 2, kCube / 2, kCube / 2));
     const PolyhedronTables cube(m.V, m.T);

@@ -244,7 +244,7 @@ void freeCubes(magtest::TempCase& c, double endTime, const std::string& extra = 
 
 } // namespace
 
-TEST_CASE("restart: the newest valid time folder; cut, empty and mislabelled ones are skipped and named",
+TEST_CASE("restart: the newest valid time folder, cut, empty and mislabelled ones are skipped and named",
           "[restart][badInput]") {
     magtest::TempCase whole, parts;
     freeCubes(whole, 0.02);
@@ -269,7 +269,8 @@ TEST_CASE("restart: the newest valid time folder; cut, empty and mislabelled one
     CHECK_THAT(log, Contains("skipping time folder 0.009/: ") &&
                         Contains("holds the state of t = 0.005") && Contains("not of its folder's time"));
     CHECK_THAT(log, Contains("skipping time folder 0.0075/: "));
-    CHECK_THAT(log, Contains("Restarting from " + parts.path("0.005").string() + " (step 10)"));
+    // The app runs in the case folder (-case .): the folder as it names it.
+    CHECK_THAT(log, Contains("Restarting from ./0.005 (step 10)"));
     // ... and continues as if nothing had happened.
     CHECK(slurp(whole.path("0.02/bodies.yaml")) == slurp(parts.path("0.02/bodies.yaml")));
     CHECK(slurp(whole.path("postProcessing/bodies.csv")) == slurp(parts.path("postProcessing/bodies.csv")));

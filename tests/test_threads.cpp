@@ -135,7 +135,7 @@ TEST_CASE("one MBM pair (two cubes) is bit-identical on any thread count", "[thr
     }
 }
 
-TEST_CASE("one thread by default; setThreads: 0 is all cores; parallelFor visits every index and "
+TEST_CASE("one thread by default, setThreads: 0 is all cores, parallelFor visits every index and "
           "rethrows the first error",
           "[threads]") {
     // Every test case restores the count it found, so this is the library's default.
