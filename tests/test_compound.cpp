@@ -76,7 +76,7 @@ double relative(const Vec3& a, const Vec3& b) { return (a - b).norm() / b.norm()
 
 } // namespace
 
-TEST_CASE("compound: the force on a cube is the sum of the Akoun-Yonnet forces of the parts; Newton's third law",
+TEST_CASE("compound: the force on a cube is the sum of the Akoun-Yonnet forces of the parts, Newton's third law",
           "[compound]") {
     // Two 1 cm cubes magnetized +z and -z, 1 mm apart along x; a third cube
     // (+z) 2 mm above them, off the axis of symmetry.
@@ -369,4 +369,64 @@ TEST_CASE("compound: bad input names the file, the body and the part", "[compoun
     const std::string log = magtest::slurp(overlap.path("log"));
     CHECK_THAT(log, Catch::Matchers::Contains("'h/0' and 'h/1' overlap"));
     CHECK_THAT(log, Catch::Matchers::Contains("(body 'h')"));
+}
+
+namespace {
+
+// The force on a 10 mm steel cube (chi 1000, Js 2 T, demag) 1 mm above a fixed
+// 10 mm N42 cube magnetized along x (its field changes sign across the
+// steel), the steel split into `cells` per edge.
+Vec3 steelCubeForce(int cells) {
+    magtest::TempCase c;
+    c.write("system/magSchemes.yaml", "field: {type: MBM, quadrature: {type: gauss, n: 4}}\ninduction: {type: demag}\n");
+    c.write("constant/materials.yaml", "N42: {model: permanent, Br: 1.3, density: 7500}\n"
+                                       "steel: {model: soft, chi: 1000, Js: 2.0, density: 7850}\n");
+    c.write("constant/bodies.yaml",
+            "bodies:\n"
+            "  - {name: magnet, geometry: {box: {size: [0.01, 0.01, 0.01]}}, material: N42, magnetization: [1, 0, 0],\n"
+            "     position: [0, 0, 0], motion: fixed}\n"
+            "  - {name: steel, geometry: {box: {size: [0.01, 0.01, 0.01]}}, material: steel, position: [0, 0, 0.011],\n"
+            "     cells: " + std::to_string(cells) + "}\n");
+    mag::Case cs = mag::Case::read(c.dir());
+    const mag::MagneticSystem magnets(cs);
+    std::vector<mag::Body> bodies = cs.bodies();
+    REQUIRE(magnets.converge(bodies).converged);
+    return magnets.wrenches(bodies)[1].force;
+}
+
+} // namespace
+
+TEST_CASE("compound: cells let a soft cube's magnetization vary, its force converges", "[compound][demag]") {
+    // One uniform magnetization sees the mean of a field that reverses across
+    // the cube; cells (the method of moments) follow it. The force grows and
+    // its steps shrink as the cells do.
+    std::vector<double> Fz;
+    for (int n : {1, 2, 3, 4}) {
+        Fz.push_back(steelCubeForce(n).z());
+        INFO("cells " << n << ": Fz " << Fz.back() << " N");
+        CHECK(Fz.back() < 0);  // attracted
+    }
+    INFO("Fz for 1..4 cells per edge: " << Fz[0] << ", " << Fz[1] << ", " << Fz[2] << ", " << Fz[3] << " N");
+    CHECK(std::abs(Fz[3] - Fz[2]) < std::abs(Fz[2] - Fz[1]));
+    CHECK(std::abs(Fz[2] - Fz[1]) < std::abs(Fz[1] - Fz[0]));
+    CHECK(std::abs(Fz[1]) > 2 * std::abs(Fz[0]));  // one cell misses most of it
+
+    // Bad input: cells on a permanent magnet, on a sphere, out of range.
+    magtest::TempCase c;
+    writeDropCase(c, "  - {name: s, geometry: {sphere: {radius: 0.005}}, material: steel, position: [0, 0, 0.01], cells: 2}\n");
+    c.write("constant/materials.yaml", "N42: {model: permanent, Br: 1.3, density: 7500}\n"
+                                       "steel: {model: soft, chi: 1000, Js: 2.0, density: 7850}\n");
+    std::string e = magtest::inputErrorOf([&] { (void)mag::Case::read(c.dir()); });
+    CHECK(magtest::contains(e, "bodies[0].cells"));
+    CHECK(magtest::contains(e, "cells split a box geometry"));
+    writeDropCase(c, "  - {name: m, geometry: {box: {size: [0.01, 0.01, 0.01]}}, material: N42, magnetization: [0, 0, 1],"
+                     " position: [0, 0, 0.01], cells: 2}\n");
+    e = magtest::inputErrorOf([&] { (void)mag::Case::read(c.dir()); });
+    CHECK(magtest::contains(e, "cells are for soft bodies"));
+    writeDropCase(c, "  - {name: s, geometry: {box: {size: [0.01, 0.01, 0.01]}}, material: steel, position: [0, 0, 0.01],"
+                     " cells: [2, 2, 0.5]}\n");
+    c.write("constant/materials.yaml", "N42: {model: permanent, Br: 1.3, density: 7500}\n"
+                                       "steel: {model: soft, chi: 1000, Js: 2.0, density: 7850}\n");
+    e = magtest::inputErrorOf([&] { (void)mag::Case::read(c.dir()); });
+    CHECK(magtest::contains(e, "whole numbers 1..32"));
 }

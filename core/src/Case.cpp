@@ -3,11 +3,13 @@
 #include "magFoam/BodyOverlap.hpp"
 #include "magFoam/Error.hpp"
 #include "magFoam/InputFile.hpp"
+#include "magFoam/MeshPrimitives.hpp"
 #include "magFoam/Log.hpp"
 #include "magFoam/Parts.hpp"
 #include "magFoam/Plugins.hpp"
 #include "magFoam/ShapeFactory.hpp"
 
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <set>
@@ -146,6 +148,48 @@ void readParts(const Dict& b, Body& body, const std::map<std::string, Material>&
                  "their common volume counts twice in the mass and the field");
 }
 
+// `cells: n` or `[nx, ny, nz]` on a soft box: the box as a compound of
+// nx x ny x nz equal boxes, each magnetized on its own (the method of moments;
+// docs/compound-bodies.md#cells).
+void splitIntoCells(const Dict& b, Body& body) {
+    const std::string who = "body '" + body.name + "'";
+    if (!body.material.soft())
+        b.fail("cells", who + ": cells are for soft bodies (a permanent magnet's magnetization is uniform)");
+    if (body.shape->kind.kind != ShapeKind::Kind::box)
+        b.fail("cells", who + ": cells split a box geometry; split other shapes into parts (docs/compound-bodies.md)");
+    std::array<int, 3> n{};
+    if (b.isList("cells")) {
+        const auto v = b.get<std::vector<double>>("cells");
+        if (v.size() != 3) b.fail("cells", "give n or [nx, ny, nz], whole numbers 1..32");
+        for (int k = 0; k < 3; ++k) n[k] = static_cast<int>(v[k]);
+        for (int k = 0; k < 3; ++k)
+            if (v[k] != n[k]) b.fail("cells", "give n or [nx, ny, nz], whole numbers 1..32");
+    } else {
+        n.fill(b.get<int>("cells"));
+    }
+    for (int k : n)
+        if (k < 1 || k > 32) b.fail("cells", "give n or [nx, ny, nz], whole numbers 1..32");
+    if (n[0] * n[1] * n[2] == 1) return;
+    const Vec3 size = body.shape->kind.size, cell = size.cwiseQuotient(Vec3(n[0], n[1], n[2]));
+    ShapeKind kind;
+    kind.kind = ShapeKind::Kind::box;
+    kind.size = cell;
+    const auto shape = makeShape(makeBox(cell), kind);
+    std::vector<Part> parts;
+    for (int i = 0; i < n[0]; ++i)
+        for (int j = 0; j < n[1]; ++j)
+            for (int k = 0; k < n[2]; ++k) {
+                const Vec3 centre = (Vec3(i + 0.5, j + 0.5, k + 0.5).cwiseProduct(cell) - 0.5 * size).eval();
+                parts.push_back(Part{shape, body.material, centre, Quat::Identity()});
+            }
+    const CompoundLayout layout = makeCompound(std::move(parts));
+    body.compound = layout.compound;
+    body.shape = layout.shape;
+    body.partMagnetization.assign(body.compound->parts.size(), Vec3::Zero());
+    body.magnetizationBody = Vec3::Zero();
+    body.material.name += " (cells)";
+}
+
 } // namespace
 
 Body readBody(const Dict& b, const std::map<std::string, Material>& materials, const std::filesystem::path& caseDir,
@@ -161,6 +205,7 @@ Body readBody(const Dict& b, const std::map<std::string, Material>& materials, c
         body.material = entryMaterial(b, materials);
         body.shape = shape ? std::move(shape) : shapes.get(b.sub("geometry"), caseDir / "constant");
         body.magnetizationBody = entryMagnetization(b, body.material, "body '" + body.name + "'");
+        if (b.has("cells")) splitIntoCells(b, body);
     }
 
     body.position = b.get<Vec3>("position");
