@@ -1,6 +1,7 @@
 #include "magFoam/ShapeFactory.hpp"
 
 #include "magFoam/Error.hpp"
+#include "magFoam/Log.hpp"
 #include "magFoam/MassProperties.hpp"
 #include "magFoam/MeshIO.hpp"
 #include "magFoam/MeshPrimitives.hpp"
@@ -10,11 +11,21 @@
 
 namespace mag {
 
-std::shared_ptr<const Shape> makeShape(SurfaceMesh mesh, const ShapeKind& kind) {
+std::shared_ptr<const Shape> makeShape(SurfaceMesh mesh, const ShapeKind& kind,
+                                       const std::vector<std::vector<Vec3>>& pieces, const std::string& piecesName) {
     requireUsable(mesh);
     auto shape = std::make_shared<Shape>();
     const MassProperties mp = computeMassProperties(mesh, 1.0);
-    recentre(mesh);
+    const Vec3 centre = recentre(mesh);
+    if (!pieces.empty()) {
+        double mismatch = 0;
+        shape->pieces = buildConvexPieces(pieces, -centre, mesh, mp.volume, piecesName, mismatch);
+        // An exact decomposition tiles the mesh (float STL: ~1e-6); a looser
+        // one (overlapping or approximate hulls) still collides, but not as the mesh.
+        if (std::abs(mismatch) > 0.01)
+            spdlog::warn("{}: the convex pieces' volumes add up to {:+.1f} % of the mesh's: they collide as "
+                         "their union, not as the mesh", piecesName, 100 * mismatch);
+    }
     shape->volume = mp.volume;
     shape->unitInertia = mp.inertia;
     shape->boundingRadius = boundingSphereRadius(mesh, Vec3::Zero());
@@ -97,8 +108,17 @@ std::shared_ptr<const Shape> ShapeCache::get(const Dict& g, const std::filesyste
     geometryMesh(g, baseDir, kind, key, true);  // identical entries share a shape: no reload
     if (auto it = shapes_.find(key); it != shapes_.end()) return it->second;
     SurfaceMesh mesh = geometryMesh(g, baseDir, kind, key);
+    std::vector<std::vector<Vec3>> pieces;
+    std::string piecesName;
+    if (kind.kind == ShapeKind::Kind::mesh) {
+        const std::filesystem::path file = piecesFileFor(kind.file);
+        if (std::filesystem::exists(file)) {
+            pieces = readConvexPieces(file, g.get<double>("scale", 1.0));
+            piecesName = file.string();
+        }
+    }
     try {
-        auto shape = makeShape(std::move(mesh), kind);
+        auto shape = makeShape(std::move(mesh), kind, pieces, piecesName);
         shapes_[key] = shape;
         return shape;
     } catch (const InputError& e) {

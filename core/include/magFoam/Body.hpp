@@ -5,6 +5,7 @@
 // with its own shape, material and magnetization (docs/compound-bodies.md).
 #pragma once
 
+#include "magFoam/ConvexPieces.hpp"
 #include "magFoam/Material.hpp"
 #include "magFoam/SurfaceMesh.hpp"
 #include "magFoam/Types.hpp"
@@ -35,6 +36,10 @@ struct Shape {
     double volume = 0;         // m^3
     Mat3 unitInertia = Mat3::Zero();  // inertia about the COM for density 1
     double boundingRadius = 0; // max vertex distance from the COM
+    // Convex pieces whose union is the mesh, for collision only (a concave
+    // mesh file's <stem>.pieces.yaml; ConvexPieces.hpp), body frame. Empty:
+    // none given (backends use the mesh).
+    std::vector<ConvexHull> pieces;
 };
 
 // One part of a compound body: a shape of its own material, placed in the

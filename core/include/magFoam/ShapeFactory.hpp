@@ -5,6 +5,9 @@
 //   geometry: {cylinder: {radius: 0.005, height: 0.01, segments: 32}}
 //   geometry: {file: geometry/clip.stl, scale: 0.001}         # STL/OBJ/PLY/OFF
 //
+// A mesh file's convex pieces (geometry/clip.pieces.yaml beside it, for
+// collision; ConvexPieces.hpp) are read with it when present.
+//
 // Every mesh is checked (closed, manifold, outward) before use, then moved so
 // its centre of mass is the origin of the body frame. Identical geometry
 // entries share one Shape (per-mesh tables are built once).
@@ -20,8 +23,12 @@
 
 namespace mag {
 
-// Check a mesh, compute its mass properties and re-centre it.
-std::shared_ptr<const Shape> makeShape(SurfaceMesh mesh, const ShapeKind& kind);
+// Check a mesh, compute its mass properties and re-centre it; convex pieces
+// (in the mesh's frame, before re-centring) are moved with it and checked
+// against it (`piecesName` names them in messages).
+std::shared_ptr<const Shape> makeShape(SurfaceMesh mesh, const ShapeKind& kind,
+                                       const std::vector<std::vector<Vec3>>& pieces = {},
+                                       const std::string& piecesName = "");
 
 // The mesh a geometry entry describes, unchecked (magCheckMesh reports on
 // it), with its kind and a key that identifies equal geometry entries.
