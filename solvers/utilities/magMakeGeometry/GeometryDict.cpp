@@ -4,6 +4,7 @@
 
 #include "PartShapes.hpp"
 
+#include <magFoam/ConvexPieces.hpp>
 #include <magFoam/Error.hpp>
 #include <magFoam/MeshIO.hpp>
 #include <magFoam/OutputFile.hpp>
@@ -24,10 +25,13 @@ namespace {
 
 // What a reader returns: the build step, run after every key is read (so
 // misspelled keys are reported before any work), and whether the parts are
-// written as separate meshes.
+// written as separate meshes; the convex pieces of part k of the build (none
+// for convex parts, which collide as their hull, and concave ones without a
+// decomposition).
 struct PartBuild {
     std::function<std::vector<SurfaceMesh>()> build;
     bool split = false;
+    std::function<ConvexPieces(std::size_t, const SurfaceMesh&)> pieces;
 };
 
 TubeCap readCaps(const Dict& d) {
@@ -67,7 +71,8 @@ PartBuild readPaperclip(const Dict& e) {
     const double wire = e.get<double>("wire", 0.0009), spacing = e.get<double>("spacing", 0.0);
     const int segments = e.get<int>("segments", 12), bend = e.get<int>("bendSegments", 16);
     const TubeCap caps = readCaps(e);
-    return {[=] { return std::vector{makePaperclip(length, width, wire, segments, bend, spacing, caps)}; }};
+    return {[=] { return std::vector{makePaperclip(length, width, wire, segments, bend, spacing, caps)}; }, false,
+            [=](std::size_t, const SurfaceMesh& m) { return tubePieces(m, segments); }};
 }
 
 // Every default scales with width (binderClipOptions); split: true writes the
@@ -92,21 +97,25 @@ PartBuild readBinderClip(const Dict& e) {
     o.handleSegments = e.get<int>("handleSegments", o.handleSegments);
     o.handleBendSegments = e.get<int>("handleBendSegments", o.handleBendSegments);
     const bool split = e.get<bool>("split", false);
-    return {[=] { return makeBinderClip(o); }, split};
+    return {[=] { return makeBinderClip(o); }, split, [=](std::size_t k, const SurfaceMesh& m) {
+                return k == 0 ? platePieces(m) : tubePieces(m, o.handleSegments);
+            }};
 }
 
 PartBuild readHexNut(const Dict& e) {
     const double f = e.get<double>("acrossFlats", 0.008), hole = e.get<double>("hole", 0.005);
     const double t = e.get<double>("thickness", 0.004);
     const int segments = e.get<int>("segments", 24);
-    return {[=] { return std::vector{makeHexNut(f, hole, t, segments)}; }};
+    return {[=] { return std::vector{makeHexNut(f, hole, t, segments)}; }, false,
+            [](std::size_t, const SurfaceMesh& m) { return annulusPieces(m); }};
 }
 
 PartBuild readWasher(const Dict& e) {
     const double outer = e.get<double>("outer", 0.010), inner = e.get<double>("inner", 0.0053);
     const double t = e.get<double>("thickness", 0.001);
     const int segments = e.get<int>("segments", 32);
-    return {[=] { return std::vector{makeWasher(outer, inner, t, segments)}; }};
+    return {[=] { return std::vector{makeWasher(outer, inner, t, segments)}; }, false,
+            [](std::size_t, const SurfaceMesh& m) { return annulusPieces(m); }};
 }
 
 PartBuild readBentPlate(const Dict& e) {
@@ -114,13 +123,14 @@ PartBuild readBentPlate(const Dict& e) {
     const double legA = e.get<double>("legA", 0.03), legB = e.get<double>("legB", 0.02);
     const double angle = e.get<double>("angle", 90.0), radius = e.get<double>("bendRadius", t);
     const int segments = e.get<int>("bendSegments", 6);
-    return {[=] { return std::vector{makeBentPlate(width, t, legA, legB, angle, radius, segments)}; }};
+    return {[=] { return std::vector{makeBentPlate(width, t, legA, legB, angle, radius, segments)}; }, false,
+            [](std::size_t, const SurfaceMesh& m) { return platePieces(m); }};
 }
 
 PartBuild readRod(const Dict& e) {
     const double radius = e.get<double>("radius", 0.003), length = e.get<double>("length", 0.05);
     const int segments = e.get<int>("segments", 24);
-    return {[=] { return std::vector{makeRod(radius, length, segments)}; }};
+    return {[=] { return std::vector{makeRod(radius, length, segments)}; }, false, {}};  // convex: no pieces
 }
 
 // An ellipsoid (a soft needle or a ball): the icosphere scaled per axis,
@@ -130,19 +140,20 @@ PartBuild readEllipsoid(const Dict& e) {
     if (!(semiAxes.minCoeff() > 0)) e.fail("semiAxes", "three semi-axes > 0 (m)");
     const int subdivisions = e.get<int>("subdivisions", 4);
     if (subdivisions < 0 || subdivisions > 6) e.fail("subdivisions", "0..6 (20 4^subdivisions triangles)");
-    return {[=] { return std::vector{makeEllipsoid(semiAxes, subdivisions)}; }};
+    return {[=] { return std::vector{makeEllipsoid(semiAxes, subdivisions)}; }, false, {}};  // convex: no pieces
 }
 
 PartBuild readBarMagnet(const Dict& e) {
     const Vec3 size = e.get<Vec3>("size", Vec3(0.05, 0.01, 0.01));
-    return {[=] { return std::vector{makeBarMagnet(size)}; }};
+    return {[=] { return std::vector{makeBarMagnet(size)}; }, false, {}};  // convex: no pieces
 }
 
 PartBuild readCraneDisc(const Dict& e) {
     const double radius = e.get<double>("radius", 0.15), height = e.get<double>("height", 0.05);
     const double rimWidth = e.get<double>("rimWidth", 0.015), rimDepth = e.get<double>("rimDepth", 0.01);
     const int segments = e.get<int>("segments", 64);
-    return {[=] { return std::vector{makeCraneDisc(radius, height, rimWidth, rimDepth, segments)}; }};
+    return {[=] { return std::vector{makeCraneDisc(radius, height, rimWidth, rimDepth, segments)}; }, false,
+            [=](std::size_t, const SurfaceMesh&) { return craneDiscPieces(radius, height, rimWidth, rimDepth, segments); }};
 }
 
 // path and wire (a diameter) are required; cornerRadius > 0 rounds the corners.
@@ -154,9 +165,10 @@ PartBuild readTube(const Dict& e) {
     const double corner = e.get<double>("cornerRadius", 0.0);
     const int bend = e.get<int>("bendSegments", 4);
     return {[=] {
-        return std::vector{makeTube(corner > 0.0 ? roundCorners(path, corner, bend) : path, 0.5 * wire,
-                                    segments, caps)};
-    }};
+                return std::vector{makeTube(corner > 0.0 ? roundCorners(path, corner, bend) : path, 0.5 * wire,
+                                            segments, caps)};
+            },
+            false, [=](std::size_t, const SurfaceMesh& m) { return tubePieces(m, segments); }};
 }
 
 // The one list of part types: a new type is one reader and one line here.
@@ -204,21 +216,27 @@ std::vector<NamedMesh> makeNamedShapes(const Dict& e) {
     e.reportUnused();
 
     std::vector<SurfaceMesh> meshes;
+    std::vector<ConvexPieces> pieces;
     try {
         meshes = part.build();
-        for (const SurfaceMesh& m : meshes) requireUsable(m);
+        for (std::size_t k = 0; k < meshes.size(); ++k) {
+            requireUsable(meshes[k]);
+            pieces.push_back(part.pieces ? part.pieces(k, meshes[k]) : ConvexPieces{});
+        }
     } catch (const InputError& err) {
         e.failHere(type + " '" + name + "': " + err.what());
     }
 
     std::vector<NamedMesh> out;
     if (meshes.size() == 1 || !part.split) {
-        out.push_back({name, type, meshes.size() == 1 ? std::move(meshes[0]) : mergeParts(meshes)});
+        ConvexPieces all;
+        for (ConvexPieces& p : pieces) all.insert(all.end(), p.begin(), p.end());
+        out.push_back({name, type, meshes.size() == 1 ? std::move(meshes[0]) : mergeParts(meshes), std::move(all)});
         out.back().mesh.source = name + ": " + out.back().mesh.source;
     } else {
         const std::vector<std::string> suffix = {"_sheet", "_handle1", "_handle2"};
         for (std::size_t i = 0; i < meshes.size(); ++i) {
-            out.push_back({name + suffix.at(i), type, std::move(meshes[i])});
+            out.push_back({name + suffix.at(i), type, std::move(meshes[i]), std::move(pieces[i])});
             out.back().mesh.source = out.back().name + ": " + out.back().mesh.source;
         }
     }
@@ -247,7 +265,15 @@ std::vector<NamedMesh> makeCaseGeometry(const std::filesystem::path& caseDir) {
 
     const std::filesystem::path folder = caseDir / "constant/geometry";
     makeFolder(folder);
-    for (const NamedMesh& m : meshes) writeStlBinary(m.mesh, folder / (m.name + ".stl"));
+    for (const NamedMesh& m : meshes) {
+        writeStlBinary(m.mesh, folder / (m.name + ".stl"));
+        // Pieces beside the mesh; an old file of a part that has none now would not match it.
+        const std::filesystem::path pieces = piecesFileFor(folder / (m.name + ".stl"));
+        if (!m.pieces.empty())
+            writeConvexPieces(pieces, m.name + ".stl", m.pieces);
+        else
+            std::filesystem::remove(pieces);
+    }
     return meshes;
 }
 

@@ -21,6 +21,8 @@ struct NamedMesh {
     std::string name;
     std::string type;
     SurfaceMesh mesh;
+    // Convex pieces tiling the mesh (written as <name>.pieces.yaml; empty: none).
+    std::vector<std::vector<Vec3>> pieces;
 };
 
 // The meshes of one `parts:` entry ({name, type, keys...}; see magMakeGeometry
@@ -32,7 +34,8 @@ std::vector<NamedMesh> makeNamedShapes(const Dict& entry);
 
 // Reads <caseDir>/system/geometryDict.yaml (parts: [...]), builds every part,
 // checks it with requireUsable and writes binary STL files
-// <caseDir>/constant/geometry/<name>.stl. Names must be unique and made of
+// <caseDir>/constant/geometry/<name>.stl, with <name>.pieces.yaml beside the
+// concave parts that have an exact convex decomposition. Names must be unique and made of
 // letters, digits, '_', '-', '.'. Returns the meshes written, in order.
 std::vector<NamedMesh> makeCaseGeometry(const std::filesystem::path& caseDir);
 

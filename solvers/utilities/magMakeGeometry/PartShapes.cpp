@@ -701,4 +701,86 @@ SurfaceMesh makeCraneDisc(double radius, double height, double rimWidth, double 
     return revolveProfile(profile, segments, name);
 }
 
+// ---------------------------------------------------------------------------
+// Convex pieces
+// ---------------------------------------------------------------------------
+
+ConvexPieces tubePieces(const SurfaceMesh& tube, int n) {
+    // [start pole, rings of n, end pole] (makeTube).
+    const int rings = n >= 3 ? (tube.nVertices() - 2) / n : 0;
+    if (n < 3 || rings < 2 || tube.nVertices() != 2 + rings * n || tube.nTriangles() != 2 * n * rings)
+        throw InputError(tube.source + ": not a tube of " + std::to_string(n) + " sides");
+    auto ring = [&](int r) {
+        const auto first = tube.vertices.begin() + 1 + r * n;
+        return std::vector<Vec3>(first, first + n);
+    };
+    // A flat cap's pole lies in its end ring: no piece of its own.
+    auto flatCap = [&](const Vec3& pole, const std::vector<Vec3>& end) {
+        const Vec3 normal = (end[1] - end[0]).cross(end[2] - end[0]).normalized();
+        return std::abs(normal.dot(pole - end[0])) <= 1e-9 * (end[1] - end[0]).norm();
+    };
+    ConvexPieces pieces;
+    for (int r = -1; r < rings; ++r) {
+        if ((r < 0 && flatCap(tube.vertices.front(), ring(0))) ||
+            (r == rings - 1 && flatCap(tube.vertices.back(), ring(rings - 1))))
+            continue;
+        std::vector<Vec3> piece = r < 0 ? std::vector<Vec3>{tube.vertices.front()} : ring(r);
+        if (r + 1 < rings) {
+            const std::vector<Vec3> next = ring(r + 1);
+            piece.insert(piece.end(), next.begin(), next.end());
+        } else {
+            piece.push_back(tube.vertices.back());
+        }
+        pieces.push_back(std::move(piece));
+    }
+    return pieces;
+}
+
+ConvexPieces platePieces(const SurfaceMesh& plate) {
+    // Four vertices per centreline point (extrudeThickPolyline).
+    const int points = plate.nVertices() / 4;
+    if (points < 2 || plate.nVertices() != 4 * points || plate.nTriangles() != 8 * (points - 1) + 4)
+        throw InputError(plate.source + ": not an extruded plate");
+    ConvexPieces pieces;
+    for (int k = 0; k + 1 < points; ++k)
+        pieces.emplace_back(plate.vertices.begin() + 4 * k, plate.vertices.begin() + 4 * k + 8);
+    return pieces;
+}
+
+ConvexPieces annulusPieces(const SurfaceMesh& annulus) {
+    // Inner bottom j, inner top n + j, outer bottom 2n + j, outer top 3n + j (annularPrism).
+    const int n = annulus.nVertices() / 4;
+    if (n < 3 || annulus.nVertices() != 4 * n || annulus.nTriangles() != 8 * n)
+        throw InputError(annulus.source + ": not an annulus");
+    ConvexPieces pieces;
+    for (int j = 0; j < n; ++j) {
+        const int k = (j + 1) % n;
+        std::vector<Vec3> piece;
+        for (int layer = 0; layer < 4; ++layer)
+            piece.insert(piece.end(), {annulus.vertices[layer * n + j], annulus.vertices[layer * n + k]});
+        pieces.push_back(std::move(piece));
+    }
+    return pieces;
+}
+
+ConvexPieces craneDiscPieces(double radius, double height, double rimWidth, double rimDepth, int n) {
+    if (!(rimWidth > 0.0 && rimDepth > 0.0)) return {};
+    // The points of makeCraneDisc's rings (revolveProfile's angles).
+    const double top = 0.5 * height, bottom = -0.5 * height, inner = radius - rimWidth;
+    auto at = [&](double rho, int j, double z) {
+        const double phi = 2.0 * pi * (j % n) / n;
+        return Vec3(rho * std::cos(phi), rho * std::sin(phi), z);
+    };
+    ConvexPieces pieces(1);
+    for (int j = 0; j < n; ++j) pieces[0].insert(pieces[0].end(), {at(inner, j, bottom + rimDepth), at(inner, j, top)});
+    for (int j = 0; j < n; ++j) {
+        std::vector<Vec3> sector;
+        for (int k : {j, j + 1})
+            for (double rho : {inner, radius})
+                for (double z : {bottom, top}) sector.push_back(at(rho, k, z));
+        pieces.push_back(std::move(sector));
+    }
+    return pieces;
+}
+
 } // namespace mag

@@ -190,4 +190,27 @@ SurfaceMesh makeBarMagnet(const Vec3& size = Vec3(0.05, 0.01, 0.01));
 SurfaceMesh makeCraneDisc(double radius = 0.15, double height = 0.05, double rimWidth = 0.015,
                           double rimDepth = 0.01, int segments = 64);
 
+// ---------------------------------------------------------------------------
+// Convex pieces (collision only; docs/rigid-bodies.md#convex-pieces)
+// ---------------------------------------------------------------------------
+
+// Point sets whose convex hulls tile a part exactly (no gaps, no overlaps):
+// what rigid-body engines collide instead of a concave mesh.
+using ConvexPieces = std::vector<std::vector<Vec3>>;
+
+// From the vertex layout of the builders above (moves and rotations of the
+// mesh keep it): a tube (makeTube, makePaperclip, binder clip handles) is a
+// chain of mitred prisms, one per pair of neighbouring rings, and its caps'
+// frusta; an extruded thick polyline (makeBentPlate, the binder clip sheet)
+// one trapezoid prism per centreline segment; an annulus (makeHexNut,
+// makeWasher) one prism per sector. InputError when the mesh does not have
+// the layout (another builder's mesh).
+ConvexPieces tubePieces(const SurfaceMesh& tube, int segments);
+ConvexPieces platePieces(const SurfaceMesh& plate);
+ConvexPieces annulusPieces(const SurfaceMesh& annulus);
+// A crane disc with a rim (makeCraneDisc's arguments): the inner cylinder
+// above the recess and one trapezoid prism per sector of the outer ring
+// (full height). Empty without a rim (the disc is convex).
+ConvexPieces craneDiscPieces(double radius, double height, double rimWidth, double rimDepth, int segments);
+
 } // namespace mag
