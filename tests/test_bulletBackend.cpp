@@ -266,7 +266,7 @@ TEST_CASE("Bullet: a NaN wrench and bad dictionaries are clear errors", "[bullet
     CHECK_THROWS_WITH(backend("type: Bullet\ncontact: {restitution: 1.5}\n"), Contains("restitution must be in [0, 1]"));
     CHECK_THROWS_WITH(backend("type: Bullet\ncontact: {margin: 0}\n"), Contains("margin must be > 0"));
     CHECK_THROWS_WITH(backend("type: Bullet\nsolverIterations: 0\n"), Contains("solverIterations must be 1..10000"));
-    CHECK_THROWS_WITH(backend("type: Bullet\ncollisionShapes: convex\n"), Contains("valid values: auto, mesh"));
+    CHECK_THROWS_WITH(backend("type: Bullet\ncollisionShapes: convex\n"), Contains("valid values: auto, trimesh, mesh"));
     CHECK_THROWS_WITH(backend("type: Bullet\nccd: {sweptSphere: 2}\n"), Contains("(0, 1]"));
     CHECK_THROWS_WITH(backend("type: Bullet\nstepper: quickStep\n"), Contains("unknown key 'stepper'"));
 }

@@ -300,7 +300,7 @@ TEST_CASE("ODE: bad dictionaries are clear errors", "[odeBackend][badInput]") {
     CHECK_THROWS_WITH(backend("type: ODE\nground: 0\n"), Contains("expected a mapping"));
     CHECK_THROWS_WITH(backend("type: ODE\nstepper: dantzig\n"), Contains("valid values: step, quickStep"));
     CHECK_THROWS_WITH(backend("type: ODE\niterations: 50\n"), Contains("stepper: quickStep only"));
-    CHECK_THROWS_WITH(backend("type: ODE\ncollisionShapes: convex\n"), Contains("valid values: auto, mesh"));
+    CHECK_THROWS_WITH(backend("type: ODE\ncollisionShapes: convex\n"), Contains("valid values: auto, trimesh, mesh"));
     CHECK_THROWS_WITH(backend("type: ODE\nsubsteps: 2\n"), Contains("did you mean 'subSteps'"));
 }
 

@@ -12,11 +12,12 @@
 // Collision shapes (`collisionShapes: auto`): boxes and spheres map to
 // Bullet's primitives; a convex mesh, a cylinder's included, to a convex hull
 // (with its polyhedral features, so hull contacts are clipped faces, full
-// manifolds in one step);
-// a concave mesh of a dynamic body to a GImpact triangle mesh, of a fixed body
-// to a BVH triangle mesh; a compound body (docs/compound-bodies.md) to a
-// compound of its parts' shapes. `mesh` makes every dynamic body's shape a
-// GImpact mesh. Margins: `contact.margin` (m) around hulls and meshes; a box's
+// manifolds in one step); a concave mesh with convex pieces (its
+// <stem>.pieces.yaml, docs/rigid-bodies.md#convex-pieces) to a compound of
+// their hulls; another concave mesh of a dynamic body to a GImpact triangle
+// mesh, of a fixed body to a BVH triangle mesh; a compound body
+// (docs/compound-bodies.md) to a compound of its parts' shapes. `trimesh`
+// ignores the pieces; `mesh` makes every dynamic body's shape a GImpact mesh. Margins: `contact.margin` (m) around hulls and meshes; a box's
 // margin lies inside it.
 //
 // Contacts are found anew every sub-step (`contact.persistent: false`, the
@@ -34,6 +35,7 @@
 // Bullet holds it (the quaternion written in bodies.yaml is derived from it,
 // and turning it back into a matrix would change its last bits).
 #include <magFoam/ContactSettings.hpp>
+#include <magFoam/ConvexPieces.hpp>
 #include <magFoam/Error.hpp>
 #include <magFoam/Log.hpp>
 #include <magFoam/ResultsWriter.hpp>
@@ -51,7 +53,6 @@
 #include <cmath>
 #include <map>
 #include <memory>
-#include <optional>
 #include <sstream>
 
 namespace mag {
@@ -68,22 +69,6 @@ Mat3 eig(const btMatrix3x3& m) {
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) r(i, j) = m[i][j];
     return r;
-}
-
-// Whether a closed mesh is convex: no vertex in front of any face's plane
-// (beyond 1e-9 of the mesh's size).
-bool isConvex(const SurfaceMesh& mesh) {
-    double size = 0;
-    for (const Vec3& v : mesh.vertices) size = std::max(size, v.norm());
-    const double tol = 1e-9 * size;
-    for (int t = 0; t < mesh.nTriangles(); ++t) {
-        const Vec3 n = mesh.normal(t);
-        if (n.squaredNorm() == 0) continue;
-        const double d = n.dot(mesh.corner(t, 0));
-        for (const Vec3& v : mesh.vertices)
-            if (n.dot(v) - d > tol) return false;
-    }
-    return true;
 }
 
 // A Bullet shape and what it keeps alive (triangle arrays, children).
@@ -118,7 +103,8 @@ public:
 
         iterations_ = d.get<int>("solverIterations", 50);
         if (iterations_ < 1 || iterations_ > 10000) d.fail("solverIterations", "solverIterations must be 1..10000");
-        meshOnly_ = d.getWord("collisionShapes", {"auto", "mesh"}, "auto") == "mesh";
+        const std::string shapes = d.getWord("collisionShapes", {"auto", "trimesh", "mesh"}, "auto");
+        meshOnly_ = shapes == "mesh", usePieces_ = shapes == "auto";
         const Dict ccd = d.subOrEmpty("ccd");
         ccdThreshold_ = ccd.get<double>("motionThreshold", 0.5);
         if (!(ccdThreshold_ >= 0)) ccd.fail("motionThreshold", "a share of the body's size, >= 0 (0: off)");
@@ -479,6 +465,23 @@ private:
             h.shape = std::move(box), h.kind = "box";
         } else if (!meshOnly_ && s.kind.kind == K::sphere) {
             h.shape = std::make_unique<btSphereShape>(s.kind.radius), h.kind = "sphere";
+        } else if (usePieces_ && !s.pieces.empty()) {
+            // A concave mesh's convex pieces (docs/rigid-bodies.md#convex-pieces):
+            // a compound of hulls, each about its centroid.
+            auto compound = std::make_unique<btCompoundShape>(true, static_cast<int>(s.pieces.size()));
+            for (const ConvexHull& piece : s.pieces) {
+                auto hull = std::make_unique<btConvexHullShape>();
+                for (const Vec3& v : piece.points) hull->addPoint(bt(Vec3(v - piece.centroid)), false);
+                hull->recalcLocalAabb();
+                hull->setMargin(margin_);
+                hull->initializePolyhedralFeatures();
+                btTransform at;
+                at.setIdentity();
+                at.setOrigin(bt(piece.centroid));
+                compound->addChildShape(at, hull.get());
+                h.children.push_back(std::move(hull));
+            }
+            h.shape = std::move(compound), h.kind = "convex pieces";
         } else if (!meshOnly_ && isConvex(s.mesh)) {
             // Cylinders too (their mesh's hull): Bullet's own cylinder rocks on
             // the ground plane when contacts are found anew every sub-step.
@@ -524,7 +527,7 @@ private:
     double margin_ = 1e-5, stiffness_ = 0, damping_ = 0, breakingShare_ = 0.1, breakingThreshold_ = 0.02;
     double splitThreshold_ = -1e-5, ccdThreshold_ = 0.5, ccdRadius_ = 0.25;
     int iterations_ = 50;
-    bool splitImpulse_ = true, persistent_ = false, meshOnly_ = false;
+    bool splitImpulse_ = true, persistent_ = false, meshOnly_ = false, usePieces_ = true;
 
     // Bullet objects (destroyed in reverse order of creation).
     std::unique_ptr<btDefaultCollisionConfiguration> config_;
@@ -573,7 +576,9 @@ const TypeDoc kDoc{
       "0: always subSteps"},
      {"maxSubSteps", "-", "cap of the automatic sub-steps, subSteps..100000"},
      {"solverIterations", "-", "sequential-impulse iterations per sub-step, 1..10000"},
-     {"collisionShapes", "-", "auto (primitives, hulls, meshes) or mesh (every dynamic body a GImpact mesh)"},
+     {"collisionShapes", "-",
+      "auto (primitives, convex pieces, hulls, meshes), trimesh (no convex pieces) or mesh (every dynamic body a "
+      "GImpact mesh)"},
      {"ccd", "-", "continuous collision detection of dynamic bodies"},
      {"ccd.motionThreshold", "-", "swept when moving more than this share of its smallest extent per sub-step; 0: off"},
      {"ccd.sweptSphere", "-", "radius of the swept sphere, a share of the smallest extent, (0, 1]"}}};

@@ -53,8 +53,14 @@
 // ours; sphere/cylinder geoms are the true shapes, the mass is the mesh's);
 // a mesh body that is exactly a box (face normals along three orthogonal
 // axes, volume = that of its bounding box) becomes a box geom with an
-// offset; every other mesh a dGeomTriMesh of the body-frame mesh. `mesh`
-// makes every body a trimesh (for comparisons and the tests).
+// offset; a concave mesh with convex pieces (its <stem>.pieces.yaml,
+// docs/rigid-bodies.md#convex-pieces) one dConvex geom per piece, a convex
+// mesh of at most 256 vertices one dConvex of its hull (ODE 0.16 collides
+// convex geoms through libccd, one contact per pair, or exactly with the
+// ground plane); every other mesh a dGeomTriMesh of the body-frame mesh.
+// Convex geoms are centred on their hull's centroid: libccd takes the geom
+// centre as a point inside the shape. `trimesh` uses no pieces or hulls;
+// `mesh` makes every body a trimesh (for comparisons and the tests).
 // A compound body (docs/compound-bodies.md) gets one geom per part, each
 // chosen as above from the part's own shape and offset to the part's place
 // on the one ODE body; ODE does not collide geoms of one body.
@@ -101,6 +107,7 @@
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
+#include <exception>
 #include <limits>
 #include <map>
 #include <mutex>
@@ -108,6 +115,7 @@
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 namespace mag {
 
@@ -160,7 +168,7 @@ void initODE() {
 // Collision shapes, built once per Shape and shared by its bodies.
 // ---------------------------------------------------------------------------
 struct CollisionShape {
-    enum class Type { box, sphere, cylinder, trimesh };
+    enum class Type { box, sphere, cylinder, convex, trimesh };
     Type type = Type::trimesh;
     Vec3 size = Vec3::Zero();           // box edge lengths
     double radius = 0, height = 0;      // sphere, cylinder (along the geom's z)
@@ -172,6 +180,10 @@ struct CollisionShape {
     std::vector<dTriIndex> indices;
     dTriMeshDataID data = nullptr;
     ode::TriangleSet triangles;         // trimesh: for the contact correction
+    ConvexHull hull;                    // convex: about the geom centre (the hull's centroid)
+    std::vector<double> planes;         // convex arrays handed to ODE (not copied by it)
+    std::vector<double> points;
+    std::vector<unsigned int> polygons;
 
     CollisionShape() = default;
     CollisionShape(const CollisionShape&) = delete;
@@ -185,6 +197,7 @@ struct CollisionShape {
         case Type::box: return "box";
         case Type::sphere: return "sphere";
         case Type::cylinder: return "cylinder";
+        case Type::convex: return "convex";
         case Type::trimesh: return "trimesh";
         }
         return "?";
@@ -276,6 +289,22 @@ ode::GeomView geomView(dGeomID g, const CollisionShape& cs) {
         };
         break;
     }
+    case CollisionShape::Type::convex: {
+        const ConvexHull* hull = &cs.hull;
+        view.support = [c, R, hull](const Vec3& u) {
+            const Vec3 ub = R.transpose() * u;
+            double best = -std::numeric_limits<double>::infinity();
+            for (const Vec3& v : hull->points) best = std::max(best, v.dot(ub));
+            return c.dot(u) + best;
+        };
+        view.surfacePlanes = [c, R, hull](const Vec3&, std::vector<ode::Plane>& out) {
+            for (std::size_t f = 0; f < hull->normals.size(); ++f) {
+                const Vec3 n = R * hull->normals[f];
+                out.push_back({n, n.dot(c) + hull->offsets[f]});
+            }
+        };
+        break;
+    }
     case CollisionShape::Type::trimesh: {
         const std::vector<Vec3>* vertices = &cs.shape->mesh.vertices;
         view.support = [c, R, vertices](const Vec3& u) {
@@ -313,7 +342,8 @@ public:
         iterations_ = d.get<int>("iterations", 20);
         if (iterations_ < 1 || iterations_ > 10000) d.fail("iterations", "iterations must be 1..10000");
         if (!quickStep_ && d.has("iterations")) d.fail("iterations", "iterations is for stepper: quickStep only");
-        meshOnly_ = d.getWord("collisionShapes", {"auto", "mesh"}, "auto") == "mesh";
+        const std::string shapes = d.getWord("collisionShapes", {"auto", "trimesh", "mesh"}, "auto");
+        meshOnly_ = shapes == "mesh", usePieces_ = shapes == "auto";
         const int seed = d.get<int>("seed", 0);
         if (seed < 0) d.fail("seed", "seed must be >= 0");
         seed_ = static_cast<unsigned long>(seed);
@@ -360,10 +390,15 @@ public:
             // A compound collides as the union of its parts' shapes: one geom
             // per part on the one ODE body (ODE never collides geoms of one body).
             auto addPiece = [&](const std::shared_ptr<const Shape>& shape, const Vec3& position, const Quat& rotation,
-                                std::string name) {
-                const CollisionShape& cs = collisionShape(shape);
-                e.pieces.push_back(Piece{&cs, createGeom(cs), position + rotation * cs.offset,
-                                         rotation * cs.offsetRotation, i, std::move(name)});
+                                const std::string& name) {
+                const auto& shapes = collisionShapes(shape);
+                for (std::size_t k = 0; k < shapes.size(); ++k) {
+                    const CollisionShape& cs = *shapes[k];
+                    e.pieces.push_back(Piece{&cs, createGeom(cs), position + rotation * cs.offset,
+                                             rotation * cs.offsetRotation, i,
+                                             shapes.size() == 1 ? name : name + "#" + std::to_string(k),
+                                             shapes.size() > 1});
+                }
             };
             if (b.compound) {
                 e.pieces.reserve(b.compound->parts.size());
@@ -414,6 +449,12 @@ public:
             }
             // Contacts, then one step with this backend's random sequence.
             dSpaceCollide(space_, this, &ODEBackend::nearCallback);
+            if (collideError_) {
+                pool_.clear();
+                dJointGroupEmpty(group_);
+                std::rethrow_exception(std::exchange(collideError_, nullptr));
+            }
+            flushPool();
             dRandSetSeed(rng_);
             if (quickStep_)
                 dWorldQuickStep(world_, h);
@@ -549,7 +590,8 @@ private:
         Vec3 offset = Vec3::Zero();             // geom centre in the body frame
         Quat rotation = Quat::Identity();       // geom axes in the body frame
         std::size_t body = 0;
-        std::string name;                       // the body's, or "<body>/<part>" (restart spaceOrder)
+        std::string name;                       // the body's, or "<body>/<part>", + "#<piece>" (restart spaceOrder)
+        bool pooled = false;                    // one of several convex pieces of a shape
     };
     struct Entry {
         std::vector<Piece> pieces;
@@ -582,7 +624,17 @@ private:
         return s_.subStepsFor(worst);
     }
 
-    static void nearCallback(void* self, dGeomID a, dGeomID b) { static_cast<ODEBackend*>(self)->collide(a, b); }
+    // An exception must not leave dSpaceCollide (the space stays locked and
+    // its destruction fails again): kept, and thrown after the pass.
+    static void nearCallback(void* self, dGeomID a, dGeomID b) {
+        auto* backend = static_cast<ODEBackend*>(self);
+        if (backend->collideError_) return;
+        try {
+            backend->collide(a, b);
+        } catch (...) {
+            backend->collideError_ = std::current_exception();
+        }
+    }
 
     void collide(dGeomID g1, dGeomID g2) {
         dBodyID b1 = dGeomGetBody(g1), b2 = dGeomGetBody(g2);
@@ -610,53 +662,115 @@ private:
                                                                geomView(g2, *e2->collision), 0.02 * scale,
                                                                s_.surfaceLayer + 1e-6 * scale);
         }
+        // Convex pieces: the contacts of all piece pairs of two bodies are
+        // pooled and reduced together after the collision pass (neighbouring
+        // pieces touch the same spot: duplicate contact rows make the LCP singular).
+        if ((e1 && e1->pooled) || (e2 && e2->pooled)) {
+            pool(g1, g2, e1, e2);
+            return;
+        }
         // Merge coincident contacts, keep at most maxContacts.
         const double scale = std::min(e1 ? e1->collision->scale : std::numeric_limits<double>::infinity(),
                                       e2 ? e2->collision->scale : std::numeric_limits<double>::infinity());
         stats_.contactsMerged += ode::mergeContacts(contacts_, 1e-3 * scale);
         ode::reduceContacts(contacts_, maxContacts_, scale);
         stats_.contactsUsed += static_cast<long>(contacts_.size());
+        for (const ode::ContactPoint& c : contacts_) addJoint(buffer_[c.source].geom, c, b1, b2);
+    }
 
-        for (const ode::ContactPoint& c : contacts_) {
-            dContact joint{};
-            joint.geom = buffer_[c.source].geom;
-            for (int k = 0; k < 3; ++k) joint.geom.pos[k] = c.position[k], joint.geom.normal[k] = c.normal[k];
-            joint.geom.depth = c.depth;
-            joint.surface.mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM;
-            if (s_.restitution > 0) joint.surface.mode |= dContactBounce;
-            joint.surface.mu = s_.friction;
-            joint.surface.bounce = s_.restitution;
-            joint.surface.bounce_vel = s_.bounceVelocity;
-            joint.surface.soft_erp = s_.erp;
-            joint.surface.soft_cfm = cfm_;
-            dJointAttach(dJointCreateContact(world_, group_, &joint), b1, b2);
+    void addJoint(const dContactGeom& geom, const ode::ContactPoint& c, dBodyID b1, dBodyID b2) {
+        dContact joint{};
+        joint.geom = geom;
+        for (int k = 0; k < 3; ++k) joint.geom.pos[k] = c.position[k], joint.geom.normal[k] = c.normal[k];
+        joint.geom.depth = c.depth;
+        joint.surface.mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM;
+        if (s_.restitution > 0) joint.surface.mode |= dContactBounce;
+        joint.surface.mu = s_.friction;
+        joint.surface.bounce = s_.restitution;
+        joint.surface.bounce_vel = s_.bounceVelocity;
+        joint.surface.soft_erp = s_.erp;
+        joint.surface.soft_cfm = cfm_;
+        dJointAttach(dJointCreateContact(world_, group_, &joint), b1, b2);
+    }
+
+    // Contacts of two bodies' pieces, gathered over one collision pass; keyed
+    // by the body indices (the ground: kNone), lower first, so that the
+    // joints are made in a fixed order.
+    static constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+    struct Pooled {
+        dBodyID b1 = nullptr, b2 = nullptr;
+        std::vector<ode::ContactPoint> contacts;
+        std::vector<dContactGeom> geoms;
+    };
+
+    void pool(dGeomID g1, dGeomID g2, const Piece* e1, const Piece* e2) {
+        std::size_t i1 = e1 ? e1->body : kNone, i2 = e2 ? e2->body : kNone;
+        const bool swap = i1 > i2;
+        if (swap) std::swap(i1, i2), std::swap(g1, g2);
+        Pooled& p = pool_[{i1, i2}];
+        p.b1 = dGeomGetBody(g1), p.b2 = dGeomGetBody(g2);
+        for (ode::ContactPoint c : contacts_) {
+            p.geoms.push_back(buffer_[c.source].geom);
+            c.source = static_cast<int>(p.geoms.size()) - 1;
+            if (swap) c.normal = -c.normal;
+            p.contacts.push_back(c);
         }
     }
 
-    const CollisionShape& collisionShape(const std::shared_ptr<const Shape>& shape) {
+    void flushPool() {
+        for (auto& [key, p] : pool_) {
+            const double scale = std::min(key.first == kNone ? std::numeric_limits<double>::infinity()
+                                                             : entries_[key.first].scale,
+                                          key.second == kNone ? std::numeric_limits<double>::infinity()
+                                                              : entries_[key.second].scale);
+            stats_.contactsMerged += ode::mergeContacts(p.contacts, 1e-3 * scale);
+            ode::reduceContacts(p.contacts, maxContacts_, scale);
+            stats_.contactsUsed += static_cast<long>(p.contacts.size());
+            for (const ode::ContactPoint& c : p.contacts) addJoint(p.geoms[c.source], c, p.b1, p.b2);
+        }
+        pool_.clear();
+    }
+
+    // The geoms' shapes of a Shape, built once: one native geom, one convex
+    // geom per convex piece (or the hull of a convex mesh), or a trimesh.
+    const std::vector<std::unique_ptr<CollisionShape>>& collisionShapes(const std::shared_ptr<const Shape>& shape) {
         auto it = shapes_.find(shape.get());
-        if (it != shapes_.end()) return *it->second;
-        auto cs = std::make_unique<CollisionShape>();
+        if (it != shapes_.end()) return it->second;
+        std::vector<std::unique_ptr<CollisionShape>> list;
         const Shape& s = *shape;
-        cs->shape = shape;
-        cs->scale = s.boundingRadius > 0 ? s.boundingRadius : boundingSphereRadius(s);
+        auto add = [&] {
+            list.push_back(std::make_unique<CollisionShape>());
+            list.back()->shape = shape;
+            list.back()->scale = s.boundingRadius > 0 ? s.boundingRadius : boundingSphereRadius(s);
+            return list.back().get();
+        };
         using K = ShapeKind::Kind;
+        std::optional<DetectedBox> box;
         if (!meshOnly_ && s.kind.kind == K::box) {
+            CollisionShape* cs = add();
             cs->type = CollisionShape::Type::box;
             cs->size = s.kind.size;
         } else if (!meshOnly_ && s.kind.kind == K::sphere) {
+            CollisionShape* cs = add();
             cs->type = CollisionShape::Type::sphere;
             cs->radius = s.kind.radius;
         } else if (!meshOnly_ && s.kind.kind == K::cylinder) {
+            CollisionShape* cs = add();
             cs->type = CollisionShape::Type::cylinder;
             cs->radius = s.kind.radius;
             cs->height = s.kind.height;
-        } else if (auto box = meshOnly_ ? std::nullopt : detectBox(s)) {
+        } else if (!meshOnly_ && (box = detectBox(s))) {
+            CollisionShape* cs = add();
             cs->type = CollisionShape::Type::box;
             cs->size = box->size;
             cs->offset = box->centre;
             cs->offsetRotation = Quat(box->axes).normalized();
+        } else if (usePieces_ && !s.pieces.empty()) {
+            for (const ConvexHull& hull : s.pieces) makeConvex(*add(), hull);
+        } else if (usePieces_ && s.mesh.nVertices() <= 256 && isConvex(s.mesh)) {
+            makeConvex(*add(), convexHull(s.mesh.vertices, s.mesh.source));
         } else {
+            CollisionShape* cs = add();
             cs->type = CollisionShape::Type::trimesh;
             cs->triangles = ode::TriangleSet::build(s.mesh);
             for (const Vec3& v : s.mesh.vertices) cs->vertices.insert(cs->vertices.end(), {v.x(), v.y(), v.z()});
@@ -666,9 +780,34 @@ private:
             dGeomTriMeshDataBuildDouble(cs->data, cs->vertices.data(), 3 * sizeof(double),
                                         static_cast<int>(s.mesh.vertices.size()), cs->indices.data(),
                                         static_cast<int>(cs->indices.size()), 3 * sizeof(dTriIndex));
-            dGeomTriMeshDataPreprocess2(cs->data, 1U << dTRIDATAPREPROCESS_BUILD_CONCAVE_EDGES, nullptr);
+            // Face angles: ODE's libccd convex-trimesh collider refuses a mesh without them.
+            dGeomTriMeshDataPreprocess2(cs->data,
+                                        (1U << dTRIDATAPREPROCESS_BUILD_CONCAVE_EDGES) |
+                                            (1U << dTRIDATAPREPROCESS_BUILD_FACE_ANGLES),
+                                        nullptr);
         }
-        return *shapes_.emplace(shape.get(), std::move(cs)).first->second;
+        return shapes_.emplace(shape.get(), std::move(list)).first->second;
+    }
+
+    // A dConvex geom's data: the hull about its centroid, which is the geom's
+    // centre (ODE's libccd colliders take the geom centre as the interior point).
+    static void makeConvex(CollisionShape& cs, const ConvexHull& hull) {
+        cs.type = CollisionShape::Type::convex;
+        cs.offset = hull.centroid;
+        cs.hull = hull;
+        cs.scale = 0;
+        for (Vec3& p : cs.hull.points) p -= hull.centroid, cs.scale = std::max(cs.scale, p.norm());
+        for (std::size_t f = 0; f < cs.hull.normals.size(); ++f) {
+            cs.hull.offsets[f] -= cs.hull.normals[f].dot(hull.centroid);
+            const Vec3& n = cs.hull.normals[f];
+            cs.planes.insert(cs.planes.end(), {n.x(), n.y(), n.z(), cs.hull.offsets[f]});
+        }
+        for (const Vec3& p : cs.hull.points) cs.points.insert(cs.points.end(), {p.x(), p.y(), p.z()});
+        for (const auto& face : cs.hull.faces) {
+            cs.polygons.push_back(static_cast<unsigned>(face.size()));
+            for (int v : face) cs.polygons.push_back(static_cast<unsigned>(v));
+        }
+        cs.hull.centroid = Vec3::Zero();
     }
 
     static double boundingSphereRadius(const Shape& s) {
@@ -682,6 +821,9 @@ private:
         case CollisionShape::Type::box: return dCreateBox(space_, cs.size.x(), cs.size.y(), cs.size.z());
         case CollisionShape::Type::sphere: return dCreateSphere(space_, cs.radius);
         case CollisionShape::Type::cylinder: return dCreateCylinder(space_, cs.radius, cs.height);
+        case CollisionShape::Type::convex:
+            return dCreateConvex(space_, cs.planes.data(), static_cast<unsigned>(cs.hull.normals.size()),
+                                 cs.points.data(), static_cast<unsigned>(cs.hull.points.size()), cs.polygons.data());
         case CollisionShape::Type::trimesh: break;
         }
         return dCreateTriMesh(space_, cs.data, nullptr, nullptr, nullptr);
@@ -786,20 +928,22 @@ private:
     ContactSettings s_;
     double cfm_ = 1e-9, maxCorrectingVelocity_ = 0.1;
     int maxContacts_ = 8, iterations_ = 20;
-    bool quickStep_ = false, meshOnly_ = false, meshCorrection_ = true;
+    bool quickStep_ = false, meshOnly_ = false, usePieces_ = true, meshCorrection_ = true;
     unsigned long seed_ = 0, rng_ = 0;
 
     // ODE objects and per-body data.
     dWorldID world_ = nullptr;
     dSpaceID space_ = nullptr;
     dJointGroupID group_ = nullptr;
-    std::map<const Shape*, std::unique_ptr<CollisionShape>> shapes_;
+    std::map<const Shape*, std::vector<std::unique_ptr<CollisionShape>>> shapes_;
     std::vector<Entry> entries_;
 
     // Collider output buffer (what ODE may return for one pair) and scratch.
     static constexpr int kCapacity = 64;
     dContact buffer_[kCapacity];
     std::vector<ode::ContactPoint> contacts_;
+    std::map<std::pair<std::size_t, std::size_t>, Pooled> pool_;
+    std::exception_ptr collideError_;
     Stats stats_;
 };
 
@@ -830,7 +974,9 @@ const TypeDoc kDoc{
      {"maxSubSteps", "-", "cap of the automatic sub-steps, subSteps..100000"},
      {"stepper", "-", "step (dWorldStep, exact LCP per island) or quickStep (iterative, large heaps)"},
      {"iterations", "-", "quickStep only: solver iterations, 1..10000"},
-     {"collisionShapes", "-", "auto (native geoms where the shape is one) or mesh (every body a trimesh)"},
+     {"collisionShapes", "-",
+      "auto (native geoms, convex pieces, convex hulls, else trimeshes), trimesh (no pieces or hulls) or mesh "
+      "(every body a trimesh)"},
      {"seed", "-", "ODE's random generator (quickStep's constraint order), >= 0"}}};
 
 const RigidBodyBackend::Add<ODEBackend> addODE("ODE", kDoc);
