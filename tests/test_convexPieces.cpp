@@ -194,6 +194,19 @@ TEST_CASE("a mesh file's pieces are read beside it, scaled and moved into the bo
     }
 }
 
+TEST_CASE("magCheckMesh reports a mesh file's convex pieces", "[convexPieces][app]") {
+    magtest::TempCase c;
+    loadClip(c, 0.001);
+    CHECK(magtest::runApp(c.dir(), "magCheckMesh", "log", "constant/geometry/clip.stl -scale 0.001") == 0);
+    CHECK_THAT(magtest::slurp(c.path("log")), Contains("convex pieces") && Contains("26 (clip.pieces.yaml)") &&
+                                                  Contains("exact decomposition"));
+    // Pieces of another scale: unusable, naming the file and the piece.
+    c.write("constant/geometry/clip.pieces.yaml", "pieces:\n  - [0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1]\n");
+    CHECK(magtest::runApp(c.dir(), "magCheckMesh", "log", "constant/geometry/clip.stl -scale 0.001") == 1);
+    CHECK_THAT(magtest::slurp(c.path("log")),
+               Contains("convex pieces UNUSABLE") && Contains("clip.pieces.yaml: piece 0"));
+}
+
 namespace {
 
 // Two paperclips dropped on the ground, the second crossing the first 2 mm

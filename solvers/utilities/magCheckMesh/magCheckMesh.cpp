@@ -8,6 +8,7 @@
 // error), 2 usage error.
 #include <magFoam/ArgList.hpp>
 #include <magFoam/BodyOverlap.hpp>
+#include <magFoam/ConvexPieces.hpp>
 #include <magFoam/Case.hpp>
 #include <magFoam/Error.hpp>
 #include <magFoam/MassProperties.hpp>
@@ -140,6 +141,30 @@ bool checkAndReport(const SurfaceMesh& mesh, std::ostream& out) {
     return false;
 }
 
+// The convex pieces beside a mesh file (docs/rigid-bodies.md#convex-pieces),
+// when there is a pieces file: their count and how their volumes add up;
+// false when they cannot be used.
+bool reportPieces(const std::filesystem::path& meshFile, double scale, const SurfaceMesh& mesh, std::ostream& out) {
+    const std::filesystem::path file = piecesFileFor(meshFile);
+    if (!std::filesystem::exists(file)) return true;
+    try {
+        const auto pieces = readConvexPieces(file, scale);
+        double mismatch = 0;
+        const double volume = computeMassProperties(mesh).volume;
+        buildConvexPieces(pieces, Vec3::Zero(), mesh, volume, file.string(), mismatch);
+        row(out, "convex pieces", std::to_string(pieces.size()) + " (" + file.filename().string() +
+                                      "), volumes add up to the mesh's " +
+                                      (std::abs(mismatch) <= 1e-4 ? "(exact decomposition)"
+                                                                  : "within " + num(100 * mismatch) + " %"));
+        if (std::abs(mismatch) > 0.01)
+            out << "  note: the pieces collide as their union, not as the mesh (overlapping or approximate)\n";
+        return true;
+    } catch (const std::exception& e) {
+        out << "convex pieces UNUSABLE: " << e.what() << '\n';
+        return false;
+    }
+}
+
 } // namespace mag
 
 namespace {
@@ -159,7 +184,8 @@ int checkFile(const std::string& file, double scale) {
                      (load.pointsAndLinesIgnored
                           ? ", " + std::to_string(load.pointsAndLinesIgnored) + " points/lines ignored"
                           : ""));
-        return mag::checkAndReport(mesh, std::cout) ? 0 : 1;
+        const bool ok = mag::checkAndReport(mesh, std::cout);
+        return ok && mag::reportPieces(file, scale, mesh, std::cout) ? 0 : 1;
     } catch (const std::exception& e) {
         std::cout << "mesh UNUSABLE: " << e.what() << '\n';
         return 1;
@@ -179,7 +205,11 @@ int checkCase(const std::filesystem::path& dir) {
             std::string key;
             const mag::SurfaceMesh mesh = mag::geometryMesh(entry.sub("geometry"), dir / "constant", kind, key);
             std::cout << "  geometry: " << mesh.source << "\n";
-            if (!mag::checkAndReport(mesh, std::cout)) ++unusable;
+            const bool ok = mag::checkAndReport(mesh, std::cout);
+            if (!ok ||
+                (kind.kind == mag::ShapeKind::Kind::mesh &&
+                 !mag::reportPieces(kind.file, entry.sub("geometry").get<double>("scale", 1.0), mesh, std::cout)))
+                ++unusable;
         } catch (const std::exception& e) {
             std::cout << "mesh UNUSABLE: " << e.what() << '\n';
             ++unusable;
