@@ -11,7 +11,9 @@
 // Gaps: every vertex of each body against every triangle of the other (exact
 // for meshes apart, up to edge-edge approaches, where it overestimates by at
 // most the mesh spacing); pairs whose bounding spheres are farther apart than
-// the nearest gap found so far are skipped. 0 for touching or overlapping.
+// the nearest gap found so far are skipped. For bodies resting in each other
+// it is the nearest vertex's distance to the other surface (the contact
+// layer, ~1 um); the overlap column says how deep they are in each other.
 #include <magFoam/ArgList.hpp>
 #include <magFoam/BodyOverlap.hpp>
 #include <magFoam/Case.hpp>
