@@ -80,3 +80,26 @@ TEST_CASE("magEndState: bad options and missing results are clear errors", "[end
     CHECK(magtest::runApp(c.dir(), "magEndState", "log") != 0);
     CHECK_THAT(magtest::slurp(c.path("log")), Contains("run magFoam first"));
 }
+
+TEST_CASE("etc/RunFunctions runRigidBodyVariant runs a case with another rigidBody.yaml and its end state",
+          "[endState][app]") {
+    magtest::TempCase c;
+    writeCase(c, 0.0101, 0);  // the top cube 0.1 mm above the base
+    std::filesystem::remove_all(c.path("0.1"));
+    c.write("system/controlDict.yaml", "endTime: 0.02\ndeltaT: 0.0001\nwriteInterval: 0.01\n");
+    c.write("system/magSchemes.yaml", "field: {type: MBM}\n");
+    c.write("constant/rigidBody.alt.yaml", "type: ODE\ngravity: [0, 0, -9.81]\n");
+    const std::string cmd = "cd '" + c.dir().string() + "' && PATH='" + (magtest::buildDir() / "bin").string() +
+                            "':\"$PATH\" bash -c '. \"" + MAG_SOURCE_DIR +
+                            "/etc/RunFunctions\" && runRigidBodyVariant alt rigidBody.alt.yaml' > log 2>&1";
+    const int rc = std::system(cmd.c_str());
+    INFO(magtest::slurp(c.path("log")) << magtest::slurp(c.path("alt/log.magFoam")));
+    REQUIRE(rc == 0);
+    // The variant folder has the other rigidBody.yaml, the run and its end state.
+    CHECK(magtest::slurp(c.path("alt/constant/rigidBody.yaml")) == magtest::slurp(c.path("constant/rigidBody.alt.yaml")));
+    CHECK(std::filesystem::exists(c.path("alt/0.02/bodies.yaml")));
+    CHECK_THAT(magtest::slurp(c.path("alt/log.magEndState")), Contains("top") && Contains("base"));
+    CHECK(std::filesystem::exists(c.path("alt/postProcessing/endState.csv")));
+    // The case itself is untouched.
+    CHECK_FALSE(std::filesystem::exists(c.path("0.02")));
+}

@@ -6,9 +6,9 @@
 // energy.
 #include "caseFixture.hpp"
 
+#include <magFoam/BodyOverlap.hpp>
 #include <magFoam/Case.hpp>
 #include <magFoam/ResultsWriter.hpp>
-#include <magFoam/SurfaceMesh.hpp>
 
 #include <catch2/catch.hpp>
 
@@ -16,35 +16,7 @@
 #include <fstream>
 #include <sstream>
 
-namespace {
-
 using magtest::slurp;
-
-// Smallest distance between two bodies' surfaces (world frame): every vertex
-// of each against every triangle of the other. Exact for disjoint meshes up to
-// edge-edge approaches (then it overestimates by at most the mesh spacing,
-// i.e. the test is conservative); 0 when a vertex is inside a triangle's plane
-// patch (touching or overlapping).
-double surfaceDistance(const mag::Body& a, const mag::Body& b) {
-    double best = 1e300;
-    auto oneWay = [&](const mag::Body& p, const mag::Body& q) {
-        const auto& qm = q.shape->mesh;
-        std::vector<mag::Vec3> qv(qm.vertices.size());
-        for (std::size_t i = 0; i < qv.size(); ++i) qv[i] = q.toWorld(qm.vertices[i]);
-        for (const auto& v : p.shape->mesh.vertices) {
-            const mag::Vec3 x = p.toWorld(v);
-            for (const auto& t : qm.triangles) {
-                const mag::Vec3 c = mag::closestPointOnTriangle(x, qv[t[0]], qv[t[1]], qv[t[2]]);
-                best = std::min(best, (c - x).norm());
-            }
-        }
-    };
-    oneWay(a, b);
-    oneWay(b, a);
-    return best;
-}
-
-} // namespace
 
 TEST_CASE("fig8 short: paperclips end attached, induction converges every step, no energy created",
           "[solver][fig8][induction]") {
@@ -143,7 +115,7 @@ TEST_CASE("fig8 short: paperclips end attached, induction converges every step, 
         if (bs[i].fixed) continue;
         double nearest = 1e300;
         for (std::size_t j = 0; j < bs.size(); ++j)
-            if (j != i) nearest = std::min(nearest, surfaceDistance(bs[i], bs[j]));
+            if (j != i) nearest = std::min(nearest, mag::surfaceGap(bs[i], bs[j]));
         INFO(bs[i].name << ": nearest body " << nearest * 1e3 << " mm");
         CHECK(nearest <= 1e-3);
     }

@@ -72,6 +72,23 @@ bool edgeCrossesFace(const Body& a, const Body& b, double tol) {
 
 } // namespace
 
+double surfaceGap(const Body& a, const Body& b, double cap) {
+    if ((a.position - b.position).norm() - a.shape->boundingRadius - b.shape->boundingRadius > cap) return cap;
+    double best = cap;
+    auto oneWay = [&](const Body& p, const Body& q) {
+        const SurfaceMesh& mesh = q.shape->mesh;
+        for (const Vec3& x : verticesIn(p, q)) {  // q's body frame: its centre of mass at the origin
+            if (x.norm() - q.shape->boundingRadius > best) continue;
+            for (int t = 0; t < mesh.nTriangles(); ++t)
+                best = std::min(best, (x - closestPointOnTriangle(x, mesh.corner(t, 0), mesh.corner(t, 1),
+                                                                  mesh.corner(t, 2))).norm());
+        }
+    };
+    oneWay(a, b);
+    oneWay(b, a);
+    return best;
+}
+
 std::vector<BodyOverlap> findOverlaps(const std::vector<Body>& bodies, double relTol) {
     std::vector<BodyOverlap> out;
     for (std::size_t i = 0; i < bodies.size(); ++i)

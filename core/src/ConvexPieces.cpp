@@ -122,14 +122,14 @@ std::filesystem::path piecesFileFor(const std::filesystem::path& meshFile) {
     return file.replace_extension(".pieces.yaml");
 }
 
-std::vector<std::vector<Vec3>> readConvexPieces(const std::filesystem::path& file, double scale) {
+ConvexPieces readConvexPieces(const std::filesystem::path& file, double scale) {
     const Dict d = Dict::fromFile(file);
     d.get<std::string>("mesh", "");
     if (!d.has("pieces")) d.reportUnused();  // a misspelt key, before "pieces is missing"
     const auto lists = d.get<std::vector<std::vector<double>>>("pieces");
     d.reportUnused();
     if (lists.empty()) d.fail("pieces", "the list of convex pieces is empty");
-    std::vector<std::vector<Vec3>> pieces;
+    ConvexPieces pieces;
     for (std::size_t k = 0; k < lists.size(); ++k) {
         const auto& c = lists[k];
         if (c.size() % 3 != 0 || c.size() < 12)
@@ -147,7 +147,7 @@ std::vector<std::vector<Vec3>> readConvexPieces(const std::filesystem::path& fil
 }
 
 void writeConvexPieces(const std::filesystem::path& file, const std::string& meshName,
-                       const std::vector<std::vector<Vec3>>& pieces) {
+                       const ConvexPieces& pieces) {
     std::ostringstream os;
     os.precision(17);
     os << "# Convex pieces of " << meshName << " for collision (docs/rigid-bodies.md#convex-pieces):\n"
@@ -162,7 +162,7 @@ void writeConvexPieces(const std::filesystem::path& file, const std::string& mes
     writeFileAtomically(file, os.str());
 }
 
-std::vector<ConvexHull> buildConvexPieces(const std::vector<std::vector<Vec3>>& pieces, const Vec3& shift,
+std::vector<ConvexHull> buildConvexPieces(const ConvexPieces& pieces, const Vec3& shift,
                                           const SurfaceMesh& mesh, double meshVolume, const std::string& what,
                                           double& volumeMismatch) {
     Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;

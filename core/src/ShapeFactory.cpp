@@ -12,7 +12,7 @@
 namespace mag {
 
 std::shared_ptr<const Shape> makeShape(SurfaceMesh mesh, const ShapeKind& kind,
-                                       const std::vector<std::vector<Vec3>>& pieces, const std::string& piecesName) {
+                                       const ConvexPieces& pieces, const std::string& piecesName) {
     requireUsable(mesh);
     auto shape = std::make_shared<Shape>();
     const MassProperties mp = computeMassProperties(mesh, 1.0);
@@ -108,7 +108,7 @@ std::shared_ptr<const Shape> ShapeCache::get(const Dict& g, const std::filesyste
     geometryMesh(g, baseDir, kind, key, true);  // identical entries share a shape: no reload
     if (auto it = shapes_.find(key); it != shapes_.end()) return it->second;
     SurfaceMesh mesh = geometryMesh(g, baseDir, kind, key);
-    std::vector<std::vector<Vec3>> pieces;
+    ConvexPieces pieces;
     std::string piecesName;
     if (kind.kind == ShapeKind::Kind::mesh) {
         const std::filesystem::path file = piecesFileFor(kind.file);

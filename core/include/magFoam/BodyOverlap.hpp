@@ -6,6 +6,7 @@
 
 #include "magFoam/Body.hpp"
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,16 @@ struct BodyOverlap {
 // reported. Cost: vertices x triangles for each pair whose bounding spheres
 // overlap; meant for the start of a run.
 std::vector<BodyOverlap> findOverlaps(const std::vector<Body>& bodies, double relTol = 1e-6);
+
+// Smallest distance between the surfaces of two bodies in their current
+// placement: every vertex of each against every triangle of the other (exact
+// for meshes apart, up to edge-edge approaches, where it overestimates by at
+// most the mesh spacing). For bodies resting in each other, the nearest
+// vertex's distance to the other surface (findOverlaps says how deep). Returns
+// `cap` when the bounding spheres are farther apart than that; vertices
+// farther from the other's centre than its bounding radius + the best gap so
+// far are skipped.
+double surfaceGap(const Body& a, const Body& b, double cap = std::numeric_limits<double>::infinity());
 
 // One warning per overlapping pair: "bodies 'a' and 'b' overlap (0.001 m deep, or
 // edges through faces; <bodiesFile>): <consequence>; check their positions".

@@ -26,6 +26,9 @@
 
 namespace mag {
 
+// The point sets of convex pieces: each piece is the convex hull of its points.
+using ConvexPieces = std::vector<std::vector<Vec3>>;
+
 // The convex hull of a point set: its vertices, face planes and face loops.
 struct ConvexHull {
     std::vector<Vec3> points;              // the hull's vertices (points inside dropped)
@@ -50,18 +53,18 @@ std::filesystem::path piecesFileFor(const std::filesystem::path& meshFile);
 
 // The pieces' point sets of a pieces file, each coordinate times `scale`.
 // InputError naming the file and the piece when the file is malformed.
-std::vector<std::vector<Vec3>> readConvexPieces(const std::filesystem::path& file, double scale);
+ConvexPieces readConvexPieces(const std::filesystem::path& file, double scale);
 
 // Writes a pieces file for the mesh file `meshName` (atomically).
 void writeConvexPieces(const std::filesystem::path& file, const std::string& meshName,
-                       const std::vector<std::vector<Vec3>>& pieces);
+                       const ConvexPieces& pieces);
 
 // Hulls of the pieces, moved by `shift` (into the body frame), checked against
 // the mesh they stand for: InputError when a piece reaches more than 1 % of the
 // mesh's size outside its bounding box. Returns the hulls; `volumeMismatch`
 // receives (sum of piece volumes - mesh volume) / mesh volume (0 for an exact
 // decomposition; overlapping pieces count twice).
-std::vector<ConvexHull> buildConvexPieces(const std::vector<std::vector<Vec3>>& pieces, const Vec3& shift,
+std::vector<ConvexHull> buildConvexPieces(const ConvexPieces& pieces, const Vec3& shift,
                                           const SurfaceMesh& mesh, double meshVolume, const std::string& what,
                                           double& volumeMismatch);
 

@@ -27,7 +27,7 @@ namespace mag {
 // (in the mesh's frame, before re-centring) are moved with it and checked
 // against it (`piecesName` names them in messages).
 std::shared_ptr<const Shape> makeShape(SurfaceMesh mesh, const ShapeKind& kind,
-                                       const std::vector<std::vector<Vec3>>& pieces = {},
+                                       const ConvexPieces& pieces = {},
                                        const std::string& piecesName = "");
 
 // The mesh a geometry entry describes, unchecked (magCheckMesh reports on

@@ -17,8 +17,9 @@
 // their hulls; another concave mesh of a dynamic body to a GImpact triangle
 // mesh, of a fixed body to a BVH triangle mesh; a compound body
 // (docs/compound-bodies.md) to a compound of its parts' shapes. `trimesh`
-// ignores the pieces; `mesh` makes every dynamic body's shape a GImpact mesh. Margins: `contact.margin` (m) around hulls and meshes; a box's
-// margin lies inside it.
+// ignores the pieces; `mesh` makes every dynamic body's shape a GImpact mesh.
+// Margins: `contact.margin` (m) around hulls and meshes; a box's margin lies
+// inside it.
 //
 // Contacts are found anew every sub-step (`contact.persistent: false`, the
 // default): the pair cache is kept sorted and the collision algorithms (and

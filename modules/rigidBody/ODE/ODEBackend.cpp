@@ -450,7 +450,7 @@ public:
             // Contacts, then one step with this backend's random sequence.
             dSpaceCollide(space_, this, &ODEBackend::nearCallback);
             if (collideError_) {
-                pool_.clear();
+                pool_.clear();  // half a pass: drop it
                 dJointGroupEmpty(group_);
                 std::rethrow_exception(std::exchange(collideError_, nullptr));
             }
@@ -717,8 +717,11 @@ private:
         }
     }
 
+    // Entries stay (their vectors keep their storage from sub-step to
+    // sub-step); pairs without contacts this pass are empty and skipped.
     void flushPool() {
         for (auto& [key, p] : pool_) {
+            if (p.contacts.empty()) continue;
             const double scale = std::min(key.first == kNone ? std::numeric_limits<double>::infinity()
                                                              : entries_[key.first].scale,
                                           key.second == kNone ? std::numeric_limits<double>::infinity()
@@ -727,8 +730,8 @@ private:
             ode::reduceContacts(p.contacts, maxContacts_, scale);
             stats_.contactsUsed += static_cast<long>(p.contacts.size());
             for (const ode::ContactPoint& c : p.contacts) addJoint(p.geoms[c.source], c, p.b1, p.b2);
+            p.contacts.clear(), p.geoms.clear();
         }
-        pool_.clear();
     }
 
     // The geoms' shapes of a Shape, built once: one native geom, one convex

@@ -8,12 +8,9 @@
 // app exits 1 unless every dynamic body is attached, at rest and not sunk in:
 // the paper scenes' acceptance (Figs. 8, 1, 9) in one command.
 //
-// Gaps: every vertex of each body against every triangle of the other (exact
-// for meshes apart, up to edge-edge approaches, where it overestimates by at
-// most the mesh spacing); pairs whose bounding spheres are farther apart than
-// the nearest gap found so far are skipped. For bodies resting in each other
-// it is the nearest vertex's distance to the other surface (the contact
-// layer, ~1 um); the overlap column says how deep they are in each other.
+// Gaps and overlaps: surfaceGap and findOverlaps (BodyOverlap.hpp). For bodies
+// resting in each other the gap is the contact layer (~1 um); the overlap
+// column says how deep they are in each other.
 #include <magFoam/ArgList.hpp>
 #include <magFoam/BodyOverlap.hpp>
 #include <magFoam/Case.hpp>
@@ -21,7 +18,6 @@
 #include <magFoam/Log.hpp>
 #include <magFoam/OutputFile.hpp>
 #include <magFoam/ResultsWriter.hpp>
-#include <magFoam/SurfaceMesh.hpp>
 
 #include <cmath>
 #include <cstdio>
@@ -39,27 +35,6 @@ double number(const ArgList& args, const std::string& name, double fallback) {
     if (end == text.c_str() || *end != '\0' || !(v >= 0) || !std::isfinite(v))
         throw InputError("-" + name + " " + text + ": expected a number >= 0");
     return v;
-}
-
-// Smallest distance between two bodies' surfaces (world frame), or `cap`
-// when their bounding spheres are farther apart than that.
-double surfaceGap(const Body& a, const Body& b, double cap) {
-    if ((a.position - b.position).norm() - a.shape->boundingRadius - b.shape->boundingRadius > cap) return cap;
-    double best = cap;
-    auto oneWay = [&](const Body& p, const Body& q) {
-        const SurfaceMesh& qm = q.shape->mesh;
-        std::vector<Vec3> qv(qm.vertices.size());
-        for (std::size_t i = 0; i < qv.size(); ++i) qv[i] = q.toWorld(qm.vertices[i]);
-        for (const Vec3& v : p.shape->mesh.vertices) {
-            const Vec3 x = p.toWorld(v);
-            if ((x - q.position).norm() - q.shape->boundingRadius > best) continue;
-            for (const auto& t : qm.triangles)
-                best = std::min(best, (closestPointOnTriangle(x, qv[t[0]], qv[t[1]], qv[t[2]]) - x).norm());
-        }
-    };
-    oneWay(a, b);
-    oneWay(b, a);
-    return best;
 }
 
 int run(const ArgList& args) {

@@ -4,6 +4,7 @@
 // geometryDict); each type is one entry of the registry in GeometryDict.cpp.
 #pragma once
 
+#include <magFoam/ConvexPieces.hpp>
 #include <magFoam/Dictionary.hpp>
 #include <magFoam/SurfaceMesh.hpp>
 
@@ -22,7 +23,7 @@ struct NamedMesh {
     std::string type;
     SurfaceMesh mesh;
     // Convex pieces tiling the mesh (written as <name>.pieces.yaml; empty: none).
-    std::vector<std::vector<Vec3>> pieces;
+    ConvexPieces pieces;
 };
 
 // The meshes of one `parts:` entry ({name, type, keys...}; see magMakeGeometry

@@ -32,6 +32,7 @@
 // have exactly the volume of the polygonal cross-section times the length.
 #pragma once
 
+#include <magFoam/ConvexPieces.hpp>
 #include <magFoam/SurfaceMesh.hpp>
 
 #include <string>
@@ -194,10 +195,8 @@ SurfaceMesh makeCraneDisc(double radius = 0.15, double height = 0.05, double rim
 // Convex pieces (collision only; docs/rigid-bodies.md#convex-pieces)
 // ---------------------------------------------------------------------------
 
-// Point sets whose convex hulls tile a part exactly (no gaps, no overlaps):
-// what rigid-body engines collide instead of a concave mesh.
-using ConvexPieces = std::vector<std::vector<Vec3>>;
-
+// Point sets (ConvexPieces.hpp) whose convex hulls tile a part exactly (no
+// gaps, no overlaps): what rigid-body engines collide instead of a concave mesh.
 // From the vertex layout of the builders above (moves and rotations of the
 // mesh keep it): a tube (makeTube, makePaperclip, binder clip handles) is a
 // chain of mitred prisms, one per pair of neighbouring rings, and its caps'
