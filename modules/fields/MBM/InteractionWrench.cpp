@@ -2,6 +2,7 @@
 // header for the formulas and the charge-model derivation).
 #include "InteractionWrench.hpp"
 
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -11,6 +12,9 @@ namespace mag::mbm {
 namespace {
 
 constexpr double kFourPi = 4.0 * std::numbers::pi;
+// insideFraction above this counts as inside (outside, the solid angles sum to
+// zero up to rounding, ~1e-16).
+constexpr double kInsideFloor = 1e-12;
 
 // Field at the samples: B, S = sum_p W_p n_p, insideFraction (scratch reused per thread).
 struct SampleField {
@@ -33,13 +37,51 @@ const SampleField& fieldAtSamples(const PolyhedronTables& source, const Vec3& Ms
     return s;
 }
 
+// The source face nearest to p (source frame): the face of the
+// closest triangle (closest point on a triangle: Ericson, Real-Time Collision
+// Detection, 5.1.5). Only samples inside the source ask, so a plain loop serves.
+const PolyFace& nearestFace(const PolyhedronTables& source, const Vec3& p) {
+    const auto& V = source.vertices();
+    double best = std::numeric_limits<double>::infinity();
+    int face = 0;
+    for (const PolyTriangle& t : source.triangles()) {
+        const Vec3 &a = V[static_cast<std::size_t>(t.v[0])], &b = V[static_cast<std::size_t>(t.v[1])],
+                   &c = V[static_cast<std::size_t>(t.v[2])];
+        const Vec3 ab = b - a, ac = c - a, ap = p - a;
+        Vec3 q;
+        const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+        if (d1 <= 0 && d2 <= 0) {
+            q = a;
+        } else {
+            const Vec3 bp = p - b;
+            const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+            const Vec3 cp = p - c;
+            const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+            const double vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
+            if (d3 >= 0 && d4 <= d3) q = b;
+            else if (d6 >= 0 && d5 <= d6) q = c;
+            else if (vc <= 0 && d1 >= 0 && d3 <= 0) q = a + d1 / (d1 - d3) * ab;
+            else if (vb <= 0 && d2 >= 0 && d6 <= 0) q = a + d2 / (d2 - d6) * ac;
+            else if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) q = b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
+            else {
+                const double den = 1 / (va + vb + vc);
+                q = a + ab * (vb * den) + ac * (vc * den);
+            }
+        }
+        const double d = (p - q).squaredNorm();
+        if (d < best) best = d, face = t.face;
+    }
+    return source.faces()[static_cast<std::size_t>(face)];
+}
+
 } // namespace
 
 OverlapModel overlapModelFromName(std::string_view name) {
     if (name == "charge") return OverlapModel::charge;
     if (name == "amperian") return OverlapModel::amperian;
+    if (name == "exterior") return OverlapModel::exterior;
     throw std::invalid_argument("unknown overlap model '" + std::string(name) +
-                                "'; valid models: amperian, charge");
+                                "'; valid models: amperian, charge, exterior");
 }
 
 Wrench interactionWrench(const PolyhedronTables& source, const Vec3& Ms,
@@ -47,26 +89,38 @@ Wrench interactionWrench(const PolyhedronTables& source, const Vec3& Ms,
                          std::span<const Vec3> normals, const Vec3& Mt, const Vec3& rc,
                          OverlapModel model) {
     const SampleField& s = fieldAtSamples(source, Ms, points, weights, normals, true);
-    const bool charge = model == OverlapModel::charge;
+    const bool charge = model == OverlapModel::charge, exterior = model == OverlapModel::exterior;
     Vec3 F = Vec3::Zero(), Tm = Vec3::Zero();
+    Vec3 normalPart = Vec3::Zero(); // exterior: int over the overlap of (Ms . n_s) n_s dV
     Vec3 nxA = Vec3::Zero();  // sum w n x (Ms x S)  (amperian: (4 pi/mu0) int B dV)
     Vec3 phiN = Vec3::Zero(); // sum w (Ms . S) n   (charge: int H dV = -phiN / (4 pi))
     double chargeEnergy = 0.0; // sum w (Mt . n)(Ms . S)
     for (std::size_t k = 0; k < points.size(); ++k) {
         const double w = weights[k];
         const Vec3& n = normals[k];
-        // Field acting on the sample: B (amperian) or mu0 H = B - mu0 Ms f (charge).
-        const Vec3 field = charge ? Vec3(s.B[k] - (mu0 * s.f[k]) * Ms) : s.B[k];
+        // Field acting on the sample: B (amperian), mu0 H = B - mu0 Ms f (charge), or
+        // exterior: mu0 H plus the normal part of mu0 Ms f across the nearest source face.
+        Vec3 field = charge || exterior ? Vec3(s.B[k] - (mu0 * s.f[k]) * Ms) : s.B[k];
+        if (exterior && s.f[k] > kInsideFloor) {
+            // mu0 H plus the normal part of mu0 Ms: B less its tangential jump.
+            const PolyFace& face = nearestFace(source, points[k]);
+            const Vec3& ns = face.normal;
+            const Vec3 g = Ms.dot(ns) * ns;
+            field += (mu0 * s.f[k]) * g;
+            // The overlap volume below this face, from div X = 1 with
+            // X = ((r - r_face) . n_s) n_s, which vanishes on the face's plane:
+            // V = sum over the target's samples inside of w (n_s . r - offset)(n_s . n).
+            normalPart += (w * s.f[k] * (ns.dot(points[k]) - face.offset) * ns.dot(n)) * g;
+        }
         const double wMB = w * Mt.dot(field);
         F += wMB * n;                            // Eq. 16
         Tm += wMB * (points[k] - rc).cross(n);   // Eq. 18: -n x (M.B)(r - rc)
-        if (charge) {
+        if (charge || exterior) {
             const double wPhi = w * Ms.dot(s.S[k]);
             phiN += wPhi * n;
             chargeEnergy += wPhi * Mt.dot(n);
-        } else {
-            nxA += w * n.cross(Ms.cross(s.S[k])); // A = mu0/(4 pi) Ms x S (Eq. 9)
         }
+        if (!charge && !exterior) nxA += w * n.cross(Ms.cross(s.S[k])); // A = mu0/(4 pi) Ms x S (Eq. 9)
     }
     Wrench out;
     out.force = F;
@@ -76,8 +130,16 @@ Wrench interactionWrench(const PolyhedronTables& source, const Vec3& Ms,
         out.torque = -(mu0 / kFourPi) * Mt.cross(phiN);
         out.energy = (mu0 / kFourPi) * chargeEnergy;
         out.fieldIntegral = -(mu0 / kFourPi) * phiN; // mu0 int H dV
+    } else if (exterior) {
+        // int B_ext dV = mu0 int H dV + mu0 int_overlap (Ms . n_s) n_s dV: the charge
+        // model's split (every sample's own term, so blocks of samples add up) and
+        // the normal part of the magnetization where the target is inside.
+        const Vec3 integral = -(mu0 / kFourPi) * phiN + mu0 * normalPart;
+        out.torque = Mt.cross(integral);
+        out.energy = -Mt.dot(integral);
+        out.fieldIntegral = integral;
     } else {
-        nxA *= mu0 / kFourPi;                // sum w n x A = int B dV
+        nxA *= mu0 / kFourPi;       // sum w n x A = int B dV
         out.torque = Mt.cross(nxA); // Eq. 17
         out.energy = -Mt.dot(nxA);
         out.fieldIntegral = nxA;

@@ -10,7 +10,8 @@
 //   T   = M_t x sum_k w_k (n_k x A_k)        = M_t x int_Vt B dV   (Eq. 17)
 //   Tm  = sum_k w_k (M_t . B_k) (r_k - r_c) x n_k                 (Eq. 18)
 //   U   = -M_t . sum_k w_k (n_k x A_k)       = -int_Vt M_t . B dV
-//   F = -grad U and T + Tm = -dU/dtheta; continuous through contact. In overlap it pulls
+//   F = -grad U and T + Tm = -dU/dtheta; continuous through contact at faces without
+//   surface current (pole faces; at side faces see exterior). In overlap it pulls
 //   the bodies towards full overlap (the energy minimum).
 // overlap: charge (Coulomb / surface-charge model, what Akoun-Yonnet gives; default)
 //   B is replaced by mu0 H = B - mu0 M_s insideFraction on the samples:
@@ -27,7 +28,23 @@
 //   surface-charge torque would count the couple twice.)
 //   U_charge = U_amperian + mu0 (M_t . M_s) V_overlap, F = -grad U_charge; the force jumps
 //   by mu0 (M_t . M_s) grad V_overlap at contact and pushes overlapping bodies apart.
-// Both models agree while the bodies do not overlap.
+// overlap: exterior (the field outside the source continued into it; for contact solvers)
+//   On a sample inside the source only the TANGENTIAL part of mu0 M_s is removed from B,
+//   across the source face nearest to the sample (normal n_s, plane offset o_s):
+//   B_ext = B - mu0 f (M_s - (M_s . n_s) n_s) = mu0 H + mu0 f (M_s . n_s) n_s.
+//   Across a face B_n is continuous and B_t jumps by mu0 M_s x n_s, so B_ext is the field
+//   just outside that face: a body sunk a little into another feels the force it felt
+//   touching it, at every face. Amperian is continuous only where the contact face
+//   carries no surface current (M_s parallel to n_s), charge only where it carries no
+//   charge (M_s perpendicular to n_s); the other jumps by mu0 (M_t . M_s) times the contact
+//   area, which a contact solver's penetration turns into kinetic energy.
+//   T and U: the charge model's split plus the normal part over the overlap volume,
+//   int_Vt B_ext dV = mu0 int_Vt H dV + mu0 sum_k w_k f_k (n_s . r_k - o_s)(n_s . n_k) (M_s . n_s) n_s
+//   (div X = 1 with X = ((r - r_face) . n_s) n_s, zero on the face's plane), every term a
+//   sample's own, so blocks of samples add up. Exact for overlap across one face, where
+//   F = -grad U with U = U_charge - mu0 (M_t . n_s)(M_s . n_s) V_overlap; across an edge an
+//   approximation of the order of the overlap (docs/physics.md#overlap-models).
+// All models agree while the bodies do not overlap.
 #pragma once
 
 #include "PolyhedronField.hpp"
@@ -43,10 +60,11 @@ namespace mag::mbm {
 /// (docs/physics.md#overlap-models).
 enum class OverlapModel {
     charge,  ///< mu0 H (Akoun-Yonnet, pushes overlapping bodies apart); the default
-    amperian ///< B (energy-conserving current model, continuous at contact)
+    amperian, ///< B (energy-conserving current model, continuous at pole-face contact)
+    exterior  ///< B less the tangential mu0 M_s across the nearest source face (continuous at any face)
 };
 
-/// Parses "charge" or "amperian"; throws std::invalid_argument listing the valid names.
+/// Parses "charge", "amperian" or "exterior"; throws std::invalid_argument listing the valid names.
 OverlapModel overlapModelFromName(std::string_view name);
 
 /// Force and torques on the target (mag::Wrench), here in the source frame.

@@ -11,7 +11,7 @@
 // planar faces, samples) are built once and shared by all bodies of a shape.
 // The adaptive rule places its samples per pair (they depend on where the
 // source is); at contact it takes the one-sided limit from the target's
-// interior, so touching magnets attract in both overlap models
+// interior, so touching magnets attract in every overlap model
 // (docs/physics.md#adaptive-quadrature).
 //
 // Threads: interaction() and evaluate() may run concurrently (the shape cache
@@ -66,7 +66,7 @@ public:
             if (n_ < 1 || n_ > 100) q.fail("n", "quadrature n must be 1..100 (points per face edge)");
         }
         q.reportUnused();
-        overlapName_ = d.getWord("overlap", {"charge", "amperian"}, "charge");
+        overlapName_ = d.getWord("overlap", {"charge", "amperian", "exterior"}, "charge");
         overlap_ = mbm::overlapModelFromName(overlapName_);
     }
 
@@ -263,8 +263,9 @@ const TypeDoc kDoc{
       "adaptive: samples per pair; beyond it the pair keeps its estimate (counted as capped)"},
      {"quadrature.n", "-", "regular, gauss: points per face edge, 1..100"},
      {"overlap", "-",
-      "charge: Akoun-Yonnet, pushes overlapping magnets apart; amperian: the energy force\n"
-      "(docs/physics.md#overlap-models)"}}};
+      "charge: Akoun-Yonnet, pushes overlapping magnets apart; amperian: the energy force;\n"
+      "exterior: the field just outside the nearest source face continued into the overlap, so\n"
+      "the force stays continuous through a contact solver's penetration (docs/physics.md#overlap-models)"}}};
 
 const FieldEvaluator::Add<MBMField> addMBM("MBM", kDoc);
 
