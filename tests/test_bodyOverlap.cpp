@@ -68,3 +68,19 @@ TEST_CASE("overlaps: two bars crossing like a plus sign, no vertex inside, are f
     CHECK(mag::findOverlaps(two(x, magnet("y", bar, Vec3(0, 0, 0.0021), Vec3(1, 0, 0), axisAngle(90, Vec3(0, 0, 1)))))
               .empty());
 }
+
+// surfaceGap of two bars crossed one above the other: their closest points lie
+// on an edge of each, mid-edge, 15 mm from every vertex (a paperclip lying
+// across another). Exact: the vertical gap.
+TEST_CASE("surface gap: bars crossing with a gap, closest points between vertices", "[overlap]") {
+    const auto bar = boxShape(Vec3(0.03, 0.002, 0.002));
+    const auto x = magnet("x", bar, Vec3::Zero(), Vec3(1, 0, 0));
+    for (double gap : {1e-6, 1e-4, 3e-3}) {
+        const auto y = magnet("y", bar, Vec3(0, 0, 0.002 + gap), Vec3(1, 0, 0), axisAngle(90, Vec3(0, 0, 1)));
+        CHECK(mag::surfaceGap(x, y) == Approx(gap).epsilon(1e-9));
+        CHECK(mag::surfaceGap(y, x) == Approx(gap).epsilon(1e-9));
+    }
+    // Apart by more than the cap: the cap.
+    const auto far = magnet("y", bar, Vec3(0, 0, 0.1), Vec3(1, 0, 0), axisAngle(90, Vec3(0, 0, 1)));
+    CHECK(mag::surfaceGap(x, far, 0.01) == 0.01);
+}

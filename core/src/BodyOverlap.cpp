@@ -44,6 +44,41 @@ double deepestInside(const Body& in, const Body& shell, double tol) {
     return deepest;
 }
 
+// Distance between segments p0-p1 and q0-q1 (Ericson, Real-Time Collision
+// Detection, 5.1.9: the closest points' parameters clamped to [0, 1]).
+double segmentDistance(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1) {
+    const Vec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+    const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+    double s = 0, t = 0;
+    if (a <= 0 && e <= 0) return r.norm();
+    if (a <= 0) {
+        t = std::clamp(f / e, 0.0, 1.0);
+    } else {
+        const double c = d1.dot(r);
+        if (e <= 0) {
+            s = std::clamp(-c / a, 0.0, 1.0);
+        } else {
+            const double b = d1.dot(d2), den = a * e - b * b;
+            s = den > 0 ? std::clamp((b * f - c * e) / den, 0.0, 1.0) : 0.0;
+            t = (b * s + f) / e;
+            if (t < 0) t = 0, s = std::clamp(-c / a, 0.0, 1.0);
+            else if (t > 1) t = 1, s = std::clamp((b - c) / a, 0.0, 1.0);
+        }
+    }
+    return (p0 + s * d1 - (q0 + t * d2)).norm();
+}
+
+// The edges of a mesh, each once (vertex index pairs, smaller first).
+std::vector<std::pair<int, int>> meshEdges(const SurfaceMesh& mesh) {
+    std::vector<std::pair<int, int>> edges;
+    edges.reserve(mesh.triangles.size() * 3);
+    for (const auto& t : mesh.triangles)
+        for (int e = 0; e < 3; ++e) edges.emplace_back(std::minmax(t[e], t[(e + 1) % 3]));
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    return edges;
+}
+
 // Does an edge of `a` pass through the inside of a face of `b`, clear of it by tol?
 bool edgeCrossesFace(const Body& a, const Body& b, double tol) {
     const std::vector<Vec3> v = verticesIn(a, b);
@@ -86,6 +121,27 @@ double surfaceGap(const Body& a, const Body& b, double cap) {
     };
     oneWay(a, b);
     oneWay(b, a);
+    // Edge against edge: two wires crossing touch between vertices, where the
+    // vertices of long straight segments can be millimetres away.
+    const std::vector<Vec3> va = verticesIn(a, b);
+    const std::vector<Vec3>& vb = b.shape->mesh.vertices;
+    struct Segment {
+        Vec3 p0, p1, mid;
+        double half;
+    };
+    auto segments = [](const SurfaceMesh& mesh, const std::vector<Vec3>& v) {
+        std::vector<Segment> out;
+        for (const auto& [i, j] : meshEdges(mesh))
+            out.push_back({v[i], v[j], 0.5 * (v[i] + v[j]), 0.5 * (v[j] - v[i]).norm()});
+        return out;
+    };
+    const std::vector<Segment> sb = segments(b.shape->mesh, vb);
+    for (const Segment& e : segments(a.shape->mesh, va)) {
+        if (e.mid.norm() - e.half - b.shape->boundingRadius > best) continue;
+        for (const Segment& f : sb)
+            if ((e.mid - f.mid).norm() - e.half - f.half <= best)
+                best = std::min(best, segmentDistance(e.p0, e.p1, f.p0, f.p1));
+    }
     return best;
 }
 

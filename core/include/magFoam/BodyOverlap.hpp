@@ -30,10 +30,10 @@ struct BodyOverlap {
 std::vector<BodyOverlap> findOverlaps(const std::vector<Body>& bodies, double relTol = 1e-6);
 
 // Smallest distance between the surfaces of two bodies in their current
-// placement: every vertex of each against every triangle of the other (exact
-// for meshes apart, up to edge-edge approaches, where it overestimates by at
-// most the mesh spacing). For bodies resting in each other, the nearest
-// vertex's distance to the other surface (findOverlaps says how deep). Returns
+// placement: every vertex of each against every triangle of the other and
+// every edge against every edge (exact for meshes apart). For bodies resting
+// in each other, the nearest vertex's distance to the other surface
+// (findOverlaps says how deep). Returns
 // `cap` when the bounding spheres are farther apart than that; vertices
 // farther from the other's centre than its bounding radius + the best gap so
 // far are skipped.
