@@ -102,4 +102,14 @@ TEST_CASE("etc/RunFunctions runRigidBodyVariant runs a case with another rigidBo
     CHECK(std::filesystem::exists(c.path("alt/postProcessing/endState.csv")));
     // The case itself is untouched.
     CHECK_FALSE(std::filesystem::exists(c.path("0.02")));
+
+    // With a schemes file as well: it becomes the variant's magSchemes.yaml.
+    c.write("system/magSchemes.ext.yaml", "field: {type: MBM, overlap: exterior}\n");
+    const std::string cmd2 = "cd '" + c.dir().string() + "' && PATH='" + (magtest::buildDir() / "bin").string() +
+                             "':\"$PATH\" bash -c '. \"" + MAG_SOURCE_DIR +
+                             "/etc/RunFunctions\" && runRigidBodyVariant ext rigidBody.alt.yaml magSchemes.ext.yaml' > log 2>&1";
+    REQUIRE(std::system(cmd2.c_str()) == 0);
+    CHECK(magtest::slurp(c.path("ext/system/magSchemes.yaml")) == magtest::slurp(c.path("system/magSchemes.ext.yaml")));
+    CHECK_THAT(magtest::slurp(c.path("ext/log.magFoam")), Contains("overlap exterior"));
+    CHECK(std::filesystem::exists(c.path("ext/0.02/bodies.yaml")));
 }
