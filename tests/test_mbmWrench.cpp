@@ -122,6 +122,11 @@ Wrench wrenchOf(const PolyhedronTables& source, const Vec3& Ms, const Samples& s
 
 const double kCube = 0.01;          // 1 cm cubes (paper Fig. 4)
 const double kMs = 1.0 / mag::mbm::mu0; // Br = 1 T
+// The energy-consistency checks: a 1 cm source box and magnetizations along no
+// axis, so that every face has a normal and a tangential part.
+const Vec3 kTiltedSourceHalf(0.005, 0.005, 0.005);
+const Vec3 kTiltedMs = Vec3(0.2, 0.3, 1.0).normalized() * kMs;
+const Vec3 kTiltedMt = Vec3(1.0, -0.5, 0.3).normalized() * 1.2 * kMs;
 
 // Axial force on the upper of two coaxial 1 cm cubes (Br = 1 T along +z), face gap d.
 double coaxialForce(const PolyhedronTables& cube, const SurfaceQuadrature& q, double d,
@@ -612,11 +617,9 @@ TEST_CASE("torques vs brute-force volume and surface integrals, also in overlap"
 }
 
 TEST_CASE("energy consistency: F = -grad U (overlap) and T = -dU/dtheta", "[mbm][wrench]") {
-    const Vec3 hs(0.005, 0.005, 0.005), ht(0.004, 0.003, 0.0035);
+    const Vec3 hs = kTiltedSourceHalf, ht(0.004, 0.003, 0.0035), Ms = kTiltedMs, Mt = kTiltedMt;
     const Mesh m = boxMesh(hs);
     const PolyhedronTables src(m.V, m.T);
-    const Vec3 Ms = Vec3(0.2, 0.3, 1.0).normalized() * kMs;
-    const Vec3 Mt = Vec3(1.0, -0.5, 0.3).normalized() * 1.2 * kMs;
     // Translation in overlap: split/graded samples follow the target. Eq. 16 and
     // -grad U agree to the rule's accuracy (6 points, 4 layers: measured 5.5e-7
     // amperian, 1.9e-7 charge, independent of the FD step; 5 points, 3 layers: 3e-6).
@@ -748,11 +751,9 @@ TEST_CASE("overlap: exterior is continuous through contact at pole and side face
 // energy and overlap volume. Tolerance as for the other models' check above (graded
 // rules; measured 1.4e-8 across the top face, 1.7e-8 across the side).
 TEST_CASE("overlap: the exterior force is the gradient of its energy", "[mbm][wrench][overlap]") {
-    const Vec3 hs(0.005, 0.005, 0.005), ht(0.002, 0.0015, 0.0025);
+    const Vec3 hs = kTiltedSourceHalf, ht(0.002, 0.0015, 0.0025), Ms = kTiltedMs, Mt = kTiltedMt;
     const Mesh m = boxMesh(hs);
     const PolyhedronTables src(m.V, m.T);
-    const Vec3 Ms = Vec3(0.2, 0.3, 1.0).normalized() * kMs;
-    const Vec3 Mt = Vec3(1.0, -0.5, 0.3).normalized() * 1.2 * kMs;
     for (int axis : {2, 0}) {
         INFO("overlap across face " << axis);
         const Vec3 n = Vec3::Unit(axis);

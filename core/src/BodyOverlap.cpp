@@ -110,21 +110,22 @@ bool edgeCrossesFace(const Body& a, const Body& b, double tol) {
 double surfaceGap(const Body& a, const Body& b, double cap) {
     if ((a.position - b.position).norm() - a.shape->boundingRadius - b.shape->boundingRadius > cap) return cap;
     double best = cap;
-    auto oneWay = [&](const Body& p, const Body& q) {
+    // Vertices of p (in q's body frame, where q's centre of mass is the origin)
+    // against q's triangles.
+    auto vertexToTriangle = [&](const std::vector<Vec3>& vp, const Body& q) {
         const SurfaceMesh& mesh = q.shape->mesh;
-        for (const Vec3& x : verticesIn(p, q)) {  // q's body frame: its centre of mass at the origin
+        for (const Vec3& x : vp) {
             if (x.norm() - q.shape->boundingRadius > best) continue;
             for (int t = 0; t < mesh.nTriangles(); ++t)
                 best = std::min(best, (x - closestPointOnTriangle(x, mesh.corner(t, 0), mesh.corner(t, 1),
                                                                   mesh.corner(t, 2))).norm());
         }
     };
-    oneWay(a, b);
-    oneWay(b, a);
+    const std::vector<Vec3> va = verticesIn(a, b);
+    vertexToTriangle(va, b);
+    vertexToTriangle(verticesIn(b, a), a);
     // Edge against edge: two wires crossing touch between vertices, where the
     // vertices of long straight segments can be millimetres away.
-    const std::vector<Vec3> va = verticesIn(a, b);
-    const std::vector<Vec3>& vb = b.shape->mesh.vertices;
     struct Segment {
         Vec3 p0, p1, mid;
         double half;
@@ -135,7 +136,7 @@ double surfaceGap(const Body& a, const Body& b, double cap) {
             out.push_back({v[i], v[j], 0.5 * (v[i] + v[j]), 0.5 * (v[j] - v[i]).norm()});
         return out;
     };
-    const std::vector<Segment> sb = segments(b.shape->mesh, vb);
+    const std::vector<Segment> sb = segments(b.shape->mesh, b.shape->mesh.vertices);
     for (const Segment& e : segments(a.shape->mesh, va)) {
         if (e.mid.norm() - e.half - b.shape->boundingRadius > best) continue;
         for (const Segment& f : sb)

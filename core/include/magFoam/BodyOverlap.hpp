@@ -33,10 +33,9 @@ std::vector<BodyOverlap> findOverlaps(const std::vector<Body>& bodies, double re
 // placement: every vertex of each against every triangle of the other and
 // every edge against every edge (exact for meshes apart). For bodies resting
 // in each other, the nearest vertex's distance to the other surface
-// (findOverlaps says how deep). Returns
-// `cap` when the bounding spheres are farther apart than that; vertices
-// farther from the other's centre than its bounding radius + the best gap so
-// far are skipped.
+// (findOverlaps says how deep). Returns `cap` when the bounding spheres are
+// farther apart than that; vertices and edges farther from the other's centre
+// than its bounding radius + the best gap so far are skipped.
 double surfaceGap(const Body& a, const Body& b, double cap = std::numeric_limits<double>::infinity());
 
 // One warning per overlapping pair: "bodies 'a' and 'b' overlap (0.001 m deep, or

@@ -2,6 +2,8 @@
 // header for the formulas and the charge-model derivation).
 #include "InteractionWrench.hpp"
 
+#include <magFoam/SurfaceMesh.hpp>
+
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -37,37 +39,15 @@ const SampleField& fieldAtSamples(const PolyhedronTables& source, const Vec3& Ms
     return s;
 }
 
-// The source face nearest to p (source frame): the face of the
-// closest triangle (closest point on a triangle: Ericson, Real-Time Collision
-// Detection, 5.1.5). Only samples inside the source ask, so a plain loop serves.
+// The source face nearest to p (source frame): the face of the closest
+// triangle. Only samples inside the source ask, so a plain loop serves.
 const PolyFace& nearestFace(const PolyhedronTables& source, const Vec3& p) {
     const auto& V = source.vertices();
     double best = std::numeric_limits<double>::infinity();
     int face = 0;
     for (const PolyTriangle& t : source.triangles()) {
-        const Vec3 &a = V[static_cast<std::size_t>(t.v[0])], &b = V[static_cast<std::size_t>(t.v[1])],
-                   &c = V[static_cast<std::size_t>(t.v[2])];
-        const Vec3 ab = b - a, ac = c - a, ap = p - a;
-        Vec3 q;
-        const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-        if (d1 <= 0 && d2 <= 0) {
-            q = a;
-        } else {
-            const Vec3 bp = p - b;
-            const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-            const Vec3 cp = p - c;
-            const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-            const double vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
-            if (d3 >= 0 && d4 <= d3) q = b;
-            else if (d6 >= 0 && d5 <= d6) q = c;
-            else if (vc <= 0 && d1 >= 0 && d3 <= 0) q = a + d1 / (d1 - d3) * ab;
-            else if (vb <= 0 && d2 >= 0 && d6 <= 0) q = a + d2 / (d2 - d6) * ac;
-            else if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) q = b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
-            else {
-                const double den = 1 / (va + vb + vc);
-                q = a + ab * (vb * den) + ac * (vc * den);
-            }
-        }
+        const Vec3 q = closestPointOnTriangle(p, V[static_cast<std::size_t>(t.v[0])],
+                                              V[static_cast<std::size_t>(t.v[1])], V[static_cast<std::size_t>(t.v[2])]);
         const double d = (p - q).squaredNorm();
         if (d < best) best = d, face = t.face;
     }
@@ -119,8 +99,9 @@ Wrench interactionWrench(const PolyhedronTables& source, const Vec3& Ms,
             const double wPhi = w * Ms.dot(s.S[k]);
             phiN += wPhi * n;
             chargeEnergy += wPhi * Mt.dot(n);
+        } else {
+            nxA += w * n.cross(Ms.cross(s.S[k])); // A = mu0/(4 pi) Ms x S (Eq. 9)
         }
-        if (!charge && !exterior) nxA += w * n.cross(Ms.cross(s.S[k])); // A = mu0/(4 pi) Ms x S (Eq. 9)
     }
     Wrench out;
     out.force = F;
