@@ -80,6 +80,7 @@ ControlDict ControlDict::read(const Dict& d) {
     if (c.writeInterval <= 0) d.fail("writeInterval", "write interval must be positive (simulated seconds)");
     if (c.threads < 0) d.fail("threads", "threads must be >= 0 (0 = all cores)");
     c.adjustTimeStep = d.get<bool>("adjustTimeStep", false);
+    c.implicitTorque = d.getWord("magneticStiffness", {"explicit", "implicit"}, "explicit") == "implicit";
     checkTimeAxis(d, c);
     checkWriteInterval(d, c);
     c.maxDeltaT = d.get<double>("maxDeltaT", 100.0 * c.deltaT);

@@ -7,6 +7,7 @@
 #include <magFoam/RigidBodyBackend.hpp>
 #include <magFoam/Threads.hpp>
 
+#include "ImplicitTorque.hpp"
 #include "Sleeping.hpp"
 #include "StepAudit.hpp"
 #include "TimeLoop.hpp"
@@ -86,6 +87,8 @@ void describeRun(const Case& c, const MagneticSystem& magnets, const RigidBodyBa
     spdlog::info("  induction:  {}", c.hasSoftBodies() ? magnets.inductionModel().describe() : "none (no soft bodies)");
     if (magnets.appliedField().active()) spdlog::info("  applied:    {}", magnets.appliedField().describe());
     spdlog::info("  rigid body: {}", backend.describe());
+    if (ctl.implicitTorque)
+        spdlog::info("  torque:     implicit in the tilt stiffness (magneticStiffness: implicit)");
 }
 
 // Adaptive steps: at most 20 % longer than the last one.
@@ -167,9 +170,9 @@ void run(Case& c, const RunOptions& options) {
         if (loop.adaptive()) {
             double stable = 0.0;
             if (sleeping.anyAsleep()) {
-                stable = audit.stableDeltaT(sleeping.awakeView(bodies), wrenches);
+                stable = audit.stableDeltaT(sleeping.awakeView(bodies), wrenches, control.implicitTorque);
             } else {
-                stable = audit.stableDeltaT(bodies, wrenches);
+                stable = audit.stableDeltaT(bodies, wrenches, control.implicitTorque);
             }
             proposal = std::min(kMaxGrowth * lastDeltaT, stable);
         }
@@ -180,7 +183,12 @@ void run(Case& c, const RunOptions& options) {
 
         // The rigid-body step under those wrenches.
         stats.start(RunStatistics::Phase::rigidBody);
-        if (!firstNonFinite(bodies, &wrenches)) backend->step(bodies, wrenches, dt);
+        if (!firstNonFinite(bodies, &wrenches)) {
+            if (control.implicitTorque)
+                backend->step(bodies, implicitTorques(bodies, wrenches, dt), dt);
+            else
+                backend->step(bodies, wrenches, dt);
+        }
         stats.stepDone();
 
         if (const Body* bad = firstNonFinite(bodies, &wrenches)) {

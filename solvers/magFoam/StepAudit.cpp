@@ -27,7 +27,7 @@ double angleBetween(const Quat& a, const Quat& b) {
 
 // stableDeltaT for one body (see the header).
 double bodyStableDeltaT(const Body& b, double size, double radius, double smallestInertia, const Wrench& w,
-                        double travel) {
+                        double travel, bool implicitTilt = false) {
     double dt = std::numeric_limits<double>::infinity();
     // Travel of the centre and of the surface in a step: v dt + a dt^2 <= travel size
     // (the backends' semi-implicit Euler moves by the new velocity, v + a dt).
@@ -40,7 +40,7 @@ double bodyStableDeltaT(const Body& b, double size, double radius, double smalle
                   within(b.angularVelocity.norm() * radius,
                          smallestInertia > 0 ? w.totalTorque().norm() / smallestInertia * radius : 0.0));
     double omega2 = w.force.norm() / (b.mass() * size);
-    if (smallestInertia > 0) omega2 = std::max(omega2, std::abs(w.bodyEnergy()) / smallestInertia);
+    if (smallestInertia > 0 && !implicitTilt) omega2 = std::max(omega2, std::abs(w.bodyEnergy()) / smallestInertia);
     if (omega2 > 0) dt = std::min(dt, 2.0 * std::acos(-1.0) / std::sqrt(omega2) / kStepsPerPeriod);
     return dt;
 }
@@ -163,13 +163,14 @@ std::optional<std::string> StepAudit::check(long step, double t, double dt, cons
     return stop;
 }
 
-double StepAudit::stableDeltaT(const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches) const {
+double StepAudit::stableDeltaT(const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches,
+                               bool implicitTilt) const {
     double dt = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         const Track& k = tracks_[i];
         if (bodies[i].fixed || k.size <= 0) continue;
         dt = std::min(dt, bodyStableDeltaT(bodies[i], k.size, k.radius, k.smallestInertia, wrenches[i],
-                                           kProposalTravel * settings_.travel));
+                                           kProposalTravel * settings_.travel, implicitTilt));
     }
     return dt;
 }

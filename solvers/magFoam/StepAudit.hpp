@@ -58,8 +58,10 @@ public:
     // omega^2 = max(|U| / I_min, |F| / (m size)) from the body's magnetic
     // energy U and force F (a magnet's tilt stiffness in a field is |U|; its
     // force changes on the scale of its size). Infinity when nothing moves or
-    // pulls.
-    double stableDeltaT(const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches) const;
+    // pulls. With implicitTilt (magneticStiffness: implicit, ImplicitTorque.hpp)
+    // the tilt term |U| / I_min is left out: that step is stable at any length.
+    double stableDeltaT(const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches,
+                        bool implicitTilt = false) const;
 
     // What the run saw (tests).
     int warnings() const { return warnings_; }

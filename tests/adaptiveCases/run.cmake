@@ -4,11 +4,16 @@
 #     write time (0.005 s apart) and on no other time;
 #  2. restart: 0 -> 0.1 s, then startFrom latestTime to 0.3 s, ends in the same
 #     state, bit for bit (bodies.yaml of 0.3), as the run in one go.
-# -DMAGFOAM=<exe> -DSRC=<case> -DWORK=<scratch dir>
+# -DMAGFOAM=<exe> -DSRC=<case> -DWORK=<scratch dir> [-DCONTROL=<controlDict line>,
+# e.g. "magneticStiffness: implicit", appended to the case's]
 include(${CMAKE_CURRENT_LIST_DIR}/../runStep.cmake)
 file(REMOVE_RECURSE ${WORK})
 file(COPY ${SRC}/ DESTINATION ${WORK}/whole)
 file(COPY ${SRC}/ DESTINATION ${WORK}/restart)
+if(DEFINED CONTROL)
+  file(APPEND ${WORK}/whole/system/controlDict.yaml "${CONTROL}\n")
+  file(APPEND ${WORK}/restart/system/controlDict.yaml "${CONTROL}\n")
+endif()
 
 step(${MAGFOAM} -case ${WORK}/whole)
 if(STEP_OUT MATCHES "Warning")

@@ -12,6 +12,10 @@
 //   maxDeltaT: 0.01       #   at most this (s), default deltaT x 100
 //   minDeltaT: 1e-7       #   at least this (s), default deltaT / 1000
 //                         #   deltaT is then the first step; write times are hit exactly
+//   magneticStiffness: explicit # or implicit: each body's magnetic torque taken
+//                         # at the end of the step, linearised (docs/dynamics.md#large-steps);
+//                         # stable at any deltaT, so the adaptive step drops its
+//                         # tilt-oscillation limit
 //   audit:                # magFoam's per-step energy and motion audit (docs/dynamics.md)
 //     energyRise: 0.05    # warn when the total energy exceeds its start by this
 //                         # fraction of the peak kinetic energy (plus what the
@@ -45,6 +49,7 @@ struct ControlDict {
     AuditSettings audit;
     bool adjustTimeStep = false;
     double maxDeltaT = 0, minDeltaT = 0;
+    bool implicitTorque = false; // magneticStiffness: implicit
 
     // Reads and checks (InputError naming the key): deltaT > 0, endTime not
     // before startTime, at most maxSteps steps of deltaT to the largest time,
