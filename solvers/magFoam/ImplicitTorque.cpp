@@ -15,20 +15,10 @@ Mat3 tiltStiffness(const Body& body, const Wrench& wrench) {
     return k * (Mat3::Identity() - m * m.transpose() / mm);
 }
 
-std::vector<Wrench> implicitTorques(const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches,
-                                    double dt) {
-    std::vector<Wrench> out = wrenches;
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-        const Body& b = bodies[i];
-        if (b.fixed) continue;
-        const Mat3 S = tiltStiffness(b, wrenches[i]);
-        if (S.isZero(0.0)) continue;
-        const Mat3 I = b.inertiaWorld();
-        const Vec3 tau = wrenches[i].totalTorque();
-        const Vec3 w = b.angularVelocity;
-        const Vec3 wEnd = (I + dt * dt * S).ldlt().solve(I * w + dt * tau);
-        out[i].mechanicalTorque += I * (wEnd - w) / dt - tau;
-    }
+std::vector<Mat3> tiltStiffnesses(const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches) {
+    std::vector<Mat3> out(bodies.size(), Mat3::Zero());
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+        if (!bodies[i].fixed) out[i] = tiltStiffness(bodies[i], wrenches[i]);
     return out;
 }
 

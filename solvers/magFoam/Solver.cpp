@@ -112,6 +112,10 @@ void run(Case& c, const RunOptions& options) {
     if (!start.folder)
         warnOverlaps(bodies, (c.dir() / "constant" / "bodies.yaml").string(),
                      "a contact solver pushes them apart at the start, adding kinetic energy");
+    if (c.control().implicitTorque && !backend->setTiltStiffness({}))
+        throw InputError((c.dir() / "system/controlDict.yaml").string() +
+                         ": magneticStiffness: implicit: the rigid-body backend '" + backend->describe() +
+                         "' cannot integrate a tilt stiffness; use ODE, or free with integrator: symplecticEuler");
     Sleeping sleeping(c.sleep(), bodies, gravity, magnets.appliedField().timeDependent());
     if (sleeping.enabled() && !backend->canSleep())
         throw InputError((c.dir() / "constant/rigidBody.yaml").string() + ": sleep: the rigid-body backend '" +
@@ -184,10 +188,8 @@ void run(Case& c, const RunOptions& options) {
         // The rigid-body step under those wrenches.
         stats.start(RunStatistics::Phase::rigidBody);
         if (!firstNonFinite(bodies, &wrenches)) {
-            if (control.implicitTorque)
-                backend->step(bodies, implicitTorques(bodies, wrenches, dt), dt);
-            else
-                backend->step(bodies, wrenches, dt);
+            if (control.implicitTorque) backend->setTiltStiffness(tiltStiffnesses(bodies, wrenches));
+            backend->step(bodies, wrenches, dt);
         }
         stats.stepDone();
 

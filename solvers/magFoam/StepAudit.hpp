@@ -59,7 +59,7 @@ public:
     // energy U and force F (a magnet's tilt stiffness in a field is |U|; its
     // force changes on the scale of its size). Infinity when nothing moves or
     // pulls. With implicitTilt (magneticStiffness: implicit, ImplicitTorque.hpp)
-    // the tilt term |U| / I_min is left out: that step is stable at any length.
+    // the tilt term |U| / I_min is left out (the backend integrates it implicitly).
     double stableDeltaT(const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches,
                         bool implicitTilt = false) const;
 

@@ -13,9 +13,10 @@
 //   minDeltaT: 1e-7       #   at least this (s), default deltaT / 1000
 //                         #   deltaT is then the first step; write times are hit exactly
 //   magneticStiffness: explicit # or implicit: each body's magnetic torque taken
-//                         # at the end of the step, linearised (docs/dynamics.md#large-steps);
-//                         # stable at any deltaT, so the adaptive step drops its
-//                         # tilt-oscillation limit
+//                         # at the end of the step, linearised in its tilt
+//                         # stiffness and solved by the backend with the contacts
+//                         # (docs/dynamics.md#implicit-tilt-stiffness); the adaptive
+//                         # step drops its tilt-oscillation limit
 //   audit:                # magFoam's per-step energy and motion audit (docs/dynamics.md)
 //     energyRise: 0.05    # warn when the total energy exceeds its start by this
 //                         # fraction of the peak kinetic energy (plus what the

@@ -55,6 +55,16 @@ public:
     // Which bodies rest now (empty: none, or no sleeping).
     virtual std::vector<char> sleeping() const { return {}; }
 
+    // Implicit magnetic tilt stiffness (controlDict magneticStiffness:
+    // implicit, docs/dynamics.md#large-steps): for the next step() only, each
+    // body's rotational stiffness S (world frame, N m / rad, symmetric and
+    // positive semi-definite; zero for none). The backend integrates the spin
+    // as backward Euler of the torque tau - S dtheta, contacts included:
+    // (I + h^2 S) w' = I w + h (tau + contact torques) per (sub-)step of h, so
+    // a torque balanced by a contact stays balanced. Returns false when the
+    // backend cannot (the default); the solver then refuses the setting.
+    virtual bool setTiltStiffness(std::span<const Mat3> /*stiffness*/) { return false; }
+
     virtual std::string describe() const = 0;
 
     using Registry = mag::Registry<RigidBodyBackend>;

@@ -437,6 +437,8 @@ public:
         const int n = subStepsFor(wrenches, dt);
         stats_.steps += 1, stats_.subSteps += n;
         const double h = dt / n;
+        // One-shot: the stiffness set for this step (setTiltStiffness).
+        const std::vector<Mat3> stiffness = std::exchange(stiffness_, {});
         for (int s = 0; s < n; ++s) {
             // External wrench (ODE clears its accumulators after every step).
             for (std::size_t i = 0; i < bodies.size(); ++i) {
@@ -455,16 +457,67 @@ public:
                 std::rethrow_exception(std::exchange(collideError_, nullptr));
             }
             flushPool();
+            const std::vector<dMass> own = stiffen(stiffness, h);
             dRandSetSeed(rng_);
             if (quickStep_)
                 dWorldQuickStep(world_, h);
             else
                 dWorldStep(world_, h);
+            unstiffen(stiffness, own);
             rng_ = dRandGetSeed();
             dJointGroupEmpty(group_);
         }
 
         for (std::size_t i = 0; i < bodies.size(); ++i) pull(bodies[i], entries_[i]);
+    }
+
+    bool setTiltStiffness(std::span<const Mat3> stiffness) override {
+        stiffness_.assign(stiffness.begin(), stiffness.end());
+        return true;
+    }
+
+    // Backward Euler of the magnetic tilt for a sub-step of h: each stiff
+    // body's inertia becomes I + h^2 S (in its body frame) and its spin
+    // (I + h^2 S)^-1 I w, so that ODE's step, contacts included, solves
+    // (I + h^2 S) w' = I w + h (tau + contact torques). The bodies' own masses
+    // are returned for unstiffen().
+    std::vector<dMass> stiffen(const std::vector<Mat3>& stiffness, double h) {
+        std::vector<dMass> own(stiffness.size());
+        for (std::size_t i = 0; i < stiffness.size() && i < entries_.size(); ++i) {
+            const dBodyID body = entries_[i].body;
+            if (!body || !dBodyIsEnabled(body) || stiffness[i].isZero(0.0)) continue;
+            dBodyGetMass(body, &own[i]);
+            const dReal* r = dBodyGetRotation(body); // row-major 3x4
+            Mat3 R;
+            for (int a = 0; a < 3; ++a)
+                for (int b = 0; b < 3; ++b) R(a, b) = r[4 * a + b];
+            Mat3 I;
+            for (int a = 0; a < 3; ++a)
+                for (int b = 0; b < 3; ++b) I(a, b) = own[i].I[4 * a + b];
+            const Mat3 stiff = I + h * h * R.transpose() * stiffness[i] * R;
+            dMass m = own[i];
+            dMassSetParameters(&m, own[i].mass, 0, 0, 0, stiff(0, 0), stiff(1, 1), stiff(2, 2), stiff(0, 1),
+                               stiff(0, 2), stiff(1, 2));
+            dBodySetMass(body, &m);
+            const dReal* w = dBodyGetAngularVel(body);
+            const Vec3 spinBody = R.transpose() * Vec3(w[0], w[1], w[2]);
+            // ODE's gyroscopic term would use the stiffened inertia (a torque
+            // w x (I + h^2 S) w that the body does not feel): off for this
+            // sub-step, the body's own -w x I w added instead.
+            const Vec3 gyro = -(R * spinBody.cross(I * spinBody));
+            dBodySetGyroscopicMode(body, 0);
+            dBodyAddTorque(body, gyro.x(), gyro.y(), gyro.z());
+            const Vec3 spin = R * stiff.ldlt().solve(I * spinBody);
+            dBodySetAngularVel(body, spin.x(), spin.y(), spin.z());
+        }
+        return own;
+    }
+    void unstiffen(const std::vector<Mat3>& stiffness, const std::vector<dMass>& own) {
+        for (std::size_t i = 0; i < stiffness.size() && i < entries_.size(); ++i)
+            if (entries_[i].body && own[i].mass > 0) {
+                dBodySetMass(entries_[i].body, &own[i]);
+                dBodySetGyroscopicMode(entries_[i].body, 1);
+            }
     }
 
     // A sleeping body is a disabled ODE body: not stepped, at rest. ODE
@@ -593,6 +646,8 @@ private:
         std::string name;                       // the body's, or "<body>/<part>", + "#<piece>" (restart spaceOrder)
         bool pooled = false;                    // one of several convex pieces of a shape
     };
+    std::vector<Mat3> stiffness_; // for the next step only (setTiltStiffness)
+
     struct Entry {
         std::vector<Piece> pieces;
         dBodyID body = nullptr; // null for fixed bodies: static geoms

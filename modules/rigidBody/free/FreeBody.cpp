@@ -73,6 +73,7 @@
 #include <magFoam/Log.hpp>
 #include <magFoam/RigidBodyBackend.hpp>
 
+#include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
 
 #include <magFoam/ResultsWriter.hpp>
@@ -81,6 +82,7 @@
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 namespace mag {
 
@@ -148,6 +150,7 @@ public:
             throw std::invalid_argument("free rigid-body backend: one wrench per body expected");
         if (!(dt > 0) || !std::isfinite(dt))
             throw std::invalid_argument("free rigid-body backend: time step must be positive and finite");
+        const std::vector<Mat3> stiffness = std::exchange(stiffness_, {}); // this step's only
         for (std::size_t i = 0; i < bodies.size(); ++i) {
             Body& b = bodies[i];
             State& s = states_[i];
@@ -164,7 +167,8 @@ public:
             if (verlet_)
                 verletStep(b, s, a, tau, dt, x, v, Q, L);
             else
-                symplecticEulerStep(b, s, a, tau, dt, x, v, Q, L);
+                symplecticEulerStep(b, s, a, tau, dt, x, v, Q, L,
+                                    i < stiffness.size() && !stiffness[i].isZero(0.0) ? &stiffness[i] : nullptr);
 
             b.position = x;
             b.velocity = v;
@@ -173,6 +177,13 @@ public:
             s.started = true;
             s.L = L;
         }
+    }
+
+    // symplectic only: verlet's closing half kick has no implicit form here.
+    bool setTiltStiffness(std::span<const Mat3> stiffness) override {
+        if (verlet_) return false;
+        stiffness_.assign(stiffness.begin(), stiffness.end());
+        return true;
     }
 
     // A sleeping body does not move; woken, it starts afresh (verlet: no kick
@@ -252,6 +263,8 @@ public:
     }
 
 private:
+    std::vector<Mat3> stiffness_; // for the next step only (setTiltStiffness)
+
     struct State {
         double mass = 0;
         Vec3 moments = Vec3::Ones();      // principal moments, kg m^2
@@ -266,14 +279,22 @@ private:
     };
 
     // Kick-drift, a function of the body's state alone.
+    // With a tilt stiffness S (setTiltStiffness) the spin is backward Euler
+    // of tau - S dtheta: (I + h^2 S) w' = L + h tau.
     void symplecticEulerStep(const Body& b, const State& s, const Vec3& a, const Vec3& tau, double dt, Vec3& x, Vec3& v,
-                             Quat& Q, Vec3& L) const {
+                             Quat& Q, Vec3& L, const Mat3* S = nullptr) const {
         const double h = dt / subSteps_;
         L = Q * s.moments.cwiseProduct(Q.conjugate() * b.angularVelocity);
         for (int k = 0; k < subSteps_; ++k) {
             v += h * a;
             x += h * v;
-            L += h * tau;
+            if (S) {
+                const Mat3 R = Q.toRotationMatrix();
+                const Mat3 I = R * s.moments.asDiagonal() * R.transpose();
+                L = I * (I + h * h * *S).ldlt().solve(L + h * tau);
+            } else {
+                L += h * tau;
+            }
             Q = freeRotation(Q, L, s.moments, h);
         }
     }
