@@ -25,6 +25,8 @@ void divergenceStudy(const Dict& study, const std::filesystem::path& caseDir);
 void switchErrorStudy(const Dict& study, const std::filesystem::path& caseDir);
 void tableOneStudy(const Dict& study, const std::filesystem::path& caseDir);
 void tableTwoStudy(const Dict& study, const std::filesystem::path& caseDir);
+// table2's `scenes:` (SceneRateStudy.cpp): whole runs, simulated s per wall s.
+void sceneRateStudy(const Dict& scenes, const std::vector<int>& counts, const std::filesystem::path& caseDir);
 void scalingStudy(const Dict& study, const std::filesystem::path& caseDir);
 
 } // namespace mag::bench

@@ -10,6 +10,7 @@
 //     repeats: 2                                          # the best run is reported
 //     threads: [1, 0]                                     # 0 = all cores
 //     backends: [ODE, Bullet]                             # default: each case's own
+//     scenes: {../fig6-twoCubes: 4.5}                     # whole runs (SceneRateStudy.cpp)
 //
 // A backend other than the case's gets the case's rigidBody.yaml keys that
 // both backends read alike (gravity, ground, contact friction, restitution and
@@ -28,6 +29,7 @@
 
 #include <chrono>
 #include <limits>
+#include <optional>
 
 namespace mag::bench {
 
@@ -50,14 +52,22 @@ Dict rigidBodyAs(const Dict& own, const std::string& type) {
 } // namespace
 
 void tableTwoStudy(const Dict& study, const std::filesystem::path& caseDir) {
-    const auto cases = study.get<std::vector<std::string>>("cases");
+    const auto cases = study.get<std::vector<std::string>>("cases", {});
     const int steps = study.get<int>("steps", 20);
     const int repeats = study.get<int>("repeats", 2);
     const auto counts = threadCounts(study);
     const auto backends = study.get<std::vector<std::string>>("backends", {});
     if (steps < 1) study.fail("steps", "steps must be >= 1");
     if (repeats < 1) study.fail("repeats", "repeats must be >= 1");
+    if (cases.empty() && !study.has("scenes"))
+        study.fail("cases", "table2 needs cases: (ms per step) or scenes: (whole runs), or both");
+    const std::optional<Dict> scenes = study.has("scenes") ? std::optional<Dict>(study.sub("scenes")) : std::nullopt;
     study.reportUnused();
+    if (scenes) {
+        const RestoreThreads restore;
+        sceneRateStudy(*scenes, counts, caseDir);
+    }
+    if (cases.empty()) return;
 
     using clock = std::chrono::steady_clock;
     auto since = [](clock::time_point t0) { return std::chrono::duration<double>(clock::now() - t0).count(); };

@@ -1,6 +1,6 @@
 // magBench: speed-versus-accuracy and stability studies (docs/case-reference.md#benchdict).
-// Reads system/benchDict.yaml of the case, runs the studies it names (or the
-// one given by -study), writes postProcessing/<study>.csv; the case's plot
+// Reads system/benchDict.yaml of the case (or -dict FILE), runs the studies it
+// names (or the one given by -study), writes postProcessing/<study>.csv; the case's plot
 // script turns them into PNG charts.
 //
 //   studies:
@@ -8,7 +8,8 @@
 //     divergence: {...}       force and error vs gap through overlap
 //     switchError: {...}      hybrid error vs switch threshold
 //     table1: {...}           paper Table 1: ms per step, MBM regular n, 1 and all threads
-//     table2: {...}           ms per step (magnetic, rigid) of whole cases
+//     table2: {...}           ms per step (magnetic, rigid) of whole cases; with
+//                             scenes: whole runs, simulated s per wall s beside the paper's
 //     scaling: {...}          ms per step of the wrenches vs the number of magnets
 //
 // Models are reached through the registries only; the MBM kernel's own timing
@@ -56,7 +57,8 @@ std::vector<Method> readMethods(const Dict& study, const std::string& valueKey) 
 namespace {
 
 int run(const ArgList& args) {
-    return bench::runStudies(args, "benchDict.yaml",
+    const std::string dict = args.get("dict");
+    return bench::runStudies(args, dict.empty() ? "benchDict.yaml" : dict,
                              {{"accuracyCost", bench::accuracyCostStudy},
                               {"divergence", bench::divergenceStudy},
                               {"switchError", bench::switchErrorStudy},
@@ -73,6 +75,7 @@ int main(int argc, char** argv) {
     args.outputs("  postProcessing/<study>.csv   one file per study of system/benchDict.yaml; columns per study:\n"
                  "      cases/benchmarks/README.md (the column names carry the units, e.g. ms per step)\n");
     args.option("study", "NAME", "run only this study of benchDict.yaml");
+    args.option("dict", "FILE", "read system/FILE instead of system/benchDict.yaml");
     if (!args.parse(argc, argv)) return args.exitCode();
     return runGuarded(args, run);
 }

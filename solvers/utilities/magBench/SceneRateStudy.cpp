@@ -1,0 +1,100 @@
+// table2's whole scenes (`scenes:` in the table2 study): each case run from
+// its start to its endTime as magFoam runs it (solver::run: its controlDict,
+// magSchemes, rigidBody backend, adaptive steps and sleeping), at each thread
+// count, on a scratch copy under postProcessing/table2/<case>/ (meshes made
+// there by magMakeGeometry when the case has system/geometryDict.yaml). The
+// figure of merit is the paper's Table 2 speed, simulated seconds per wall
+// second, printed beside the paper's (Delta t / (T_m + T_r) of its Table 2):
+//
+//   table2:
+//     scenes:                          # case (relative to this one): the paper's sim-s / wall-s
+//       ../fig6-twoCubes: 4.5
+//       ../fig7-stackedMagnets: 0.050
+//     threads: [1, 0]
+//
+// Whole runs take minutes per scene: cases/benchmarks keeps them in
+// system/benchDict.table2.yaml (magBench -dict benchDict.table2.yaml).
+#include "BenchCommon.hpp"
+#include "Studies.hpp"
+#include "ThreadStudies.hpp"
+
+#include <magFoam/Case.hpp>
+#include <magFoam/Error.hpp>
+#include <magFoam/Log.hpp>
+
+#include <Solver.hpp>
+
+#include <chrono>
+#include <cstdlib>
+
+namespace mag::bench {
+
+namespace {
+
+// magMakeGeometry beside this executable.
+std::filesystem::path siblingApp(const std::string& name) {
+    std::error_code ec;
+    const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
+    if (ec) throw std::runtime_error("table2 scenes: cannot find this executable's folder (/proc/self/exe)");
+    return self.parent_path() / name;
+}
+
+// A fresh copy of the case's constant/ and system/ (no time folders).
+std::filesystem::path scratchCopy(const std::filesystem::path& src, const std::filesystem::path& dst) {
+    std::filesystem::remove_all(dst);
+    std::filesystem::create_directories(dst);
+    for (const char* sub : {"constant", "system"})
+        std::filesystem::copy(src / sub, dst / sub, std::filesystem::copy_options::recursive);
+    if (std::filesystem::exists(src / "system/geometryDict.yaml")) {
+        const std::string cmd = fmt::format("'{}' -case '{}' > '{}' 2>&1", siblingApp("magMakeGeometry").string(),
+                                            dst.string(), (dst / "log.magMakeGeometry").string());
+        if (std::system(cmd.c_str()) != 0)
+            throw std::runtime_error("table2 scenes: magMakeGeometry failed in " + dst.string() +
+                                     " (see log.magMakeGeometry there)");
+    }
+    return dst;
+}
+
+} // namespace
+
+void sceneRateStudy(const Dict& scenes, const std::vector<int>& counts, const std::filesystem::path& caseDir) {
+    using clock = std::chrono::steady_clock;
+    auto csv = openCsv(caseDir, "table2Scenes.csv",
+                       "case,threads,simulatedSeconds,wallSeconds,steps,simulatedPerWall,paperSimulatedPerWall,ratio");
+    for (const std::string& name : scenes.keys()) {
+        const double paper = scenes.get<double>(name);
+        if (!(paper > 0)) scenes.fail(name, "the paper's simulated seconds per wall second must be > 0");
+        const std::filesystem::path src = caseDir / name;
+        if (!std::filesystem::is_directory(src / "system"))
+            scenes.fail(name, "no case folder " + src.string() + " (a path relative to " + caseDir.string() + ")");
+        for (int t : counts) {
+            const auto dir = scratchCopy(src, caseDir / "postProcessing" / "table2" /
+                                                  (src.filename().string() + "-threads" + std::to_string(t)));
+            Case c = Case::read(dir);
+            setThreads(t);
+            long steps = 0;
+            solver::RunOptions options;
+            options.onWrite = [&](const solver::WriteRecord& r) { steps = r.step; };
+            const double simulated = c.control().endTime - c.control().startTime;
+            const auto level = spdlog::get_level();
+            spdlog::set_level(spdlog::level::warn); // the run's own log: warnings only
+            const auto t0 = clock::now();
+            try {
+                solver::run(c, options);
+            } catch (...) {
+                spdlog::set_level(level);
+                throw;
+            }
+            const double wall = std::chrono::duration<double>(clock::now() - t0).count();
+            spdlog::set_level(level);
+            const double rate = simulated / wall;
+            csv << '"' << name << "\"," << t << ',' << simulated << ',' << wall << ',' << steps << ',' << rate << ','
+                << paper << ',' << rate / paper << '\n';
+            spdlog::info("  {:<28} threads {}  {:g} s simulated in {:.1f} s, {} steps: {:.4g} simulated s per wall s "
+                         "(paper {:g}: {:.2f}x)",
+                         name, t, simulated, wall, steps, rate, paper, rate / paper);
+        }
+    }
+}
+
+} // namespace mag::bench
