@@ -6,7 +6,8 @@
 // energy as (omega dt)^2 below that. Linearised,
 //   tau(theta + dt w') ~ tau - S dt w',   S = (m . B) 1 - m B^T,
 // the rotational stiffness of a moment m in a uniform field B; the backend
-// solves (I + dt^2 S) w' = I w + dt (tau + contact torques): backward Euler
+// solves (I + h^2 S) w' = I w + h (tau - S phi + contact torques) in each
+// sub-step h of the step, phi the turn since the step began: backward Euler
 // of the free swing, stable at any dt, damping it by 1 / sqrt(1 + (omega dt)^2)
 // per step, consistent to first order in dt. A torque a contact balances
 // stays balanced (the contact holds w' = 0, the torque is applied in full).

@@ -60,8 +60,9 @@ public:
     // body's rotational stiffness S (world frame, N m / rad, symmetric and
     // positive semi-definite; zero for none). The backend integrates the spin
     // as backward Euler of the torque tau - S dtheta, contacts included:
-    // (I + h^2 S) w' = I w + h (tau + contact torques) per (sub-)step of h, so
-    // a torque balanced by a contact stays balanced. Returns false when the
+    // (I + h^2 S) w' = I w + h (tau - S phi + contact torques) per (sub-)step
+    // of h, phi the turn since the step began (sub-steps keep the step's
+    // linearisation), so a torque balanced by a contact stays balanced. Returns false when the
     // backend cannot (the default); the solver then refuses the setting.
     virtual bool setTiltStiffness(std::span<const Mat3> /*stiffness*/) { return false; }
 

@@ -439,6 +439,7 @@ public:
         const double h = dt / n;
         // One-shot: the stiffness set for this step (setTiltStiffness).
         const std::vector<Mat3> stiffness = std::exchange(stiffness_, {});
+        const std::vector<Quat> start = stiffness.empty() ? std::vector<Quat>{} : orientations();
         for (int s = 0; s < n; ++s) {
             // External wrench (ODE clears its accumulators after every step).
             for (std::size_t i = 0; i < bodies.size(); ++i) {
@@ -457,7 +458,7 @@ public:
                 std::rethrow_exception(std::exchange(collideError_, nullptr));
             }
             flushPool();
-            const std::vector<dMass> own = stiffen(stiffness, h);
+            const std::vector<dMass> own = stiffen(stiffness, start, h);
             dRandSetSeed(rng_);
             if (quickStep_)
                 dWorldQuickStep(world_, h);
@@ -481,12 +482,19 @@ public:
     // (I + h^2 S)^-1 I w, so that ODE's step, contacts included, solves
     // (I + h^2 S) w' = I w + h (tau + contact torques). The bodies' own masses
     // are returned for unstiffen().
-    std::vector<dMass> stiffen(const std::vector<Mat3>& stiffness, double h) {
+    // The torque is the step's, linearised about the step's start: a sub-step
+    // after the first also gets -S phi, phi the rotation since that start, so
+    // that sub-steps do not turn the linearised torque explicit again.
+    std::vector<dMass> stiffen(const std::vector<Mat3>& stiffness, const std::vector<Quat>& start, double h) {
         std::vector<dMass> own(stiffness.size());
         for (std::size_t i = 0; i < stiffness.size() && i < entries_.size(); ++i) {
             const dBodyID body = entries_[i].body;
             if (!body || !dBodyIsEnabled(body) || stiffness[i].isZero(0.0)) continue;
             dBodyGetMass(body, &own[i]);
+            const dReal* q = dBodyGetQuaternion(body);
+            const Eigen::AngleAxisd turned(Quat(q[0], q[1], q[2], q[3]) * start[i].conjugate());
+            const Vec3 back = -stiffness[i] * (turned.angle() * turned.axis());
+            dBodyAddTorque(body, back.x(), back.y(), back.z());
             const dReal* r = dBodyGetRotation(body); // row-major 3x4
             Mat3 R;
             for (int a = 0; a < 3; ++a)
@@ -511,6 +519,15 @@ public:
             dBodySetAngularVel(body, spin.x(), spin.y(), spin.z());
         }
         return own;
+    }
+    std::vector<Quat> orientations() const {
+        std::vector<Quat> out(entries_.size(), Quat::Identity());
+        for (std::size_t i = 0; i < entries_.size(); ++i)
+            if (const dBodyID body = entries_[i].body) {
+                const dReal* q = dBodyGetQuaternion(body);
+                out[i] = Quat(q[0], q[1], q[2], q[3]);
+            }
+        return out;
     }
     void unstiffen(const std::vector<Mat3>& stiffness, const std::vector<dMass>& own) {
         for (std::size_t i = 0; i < stiffness.size() && i < entries_.size(); ++i)

@@ -285,13 +285,18 @@ private:
                              Quat& Q, Vec3& L, const Mat3* S = nullptr) const {
         const double h = dt / subSteps_;
         L = Q * s.moments.cwiseProduct(Q.conjugate() * b.angularVelocity);
+        const Quat start = Q;
         for (int k = 0; k < subSteps_; ++k) {
             v += h * a;
             x += h * v;
             if (S) {
+                // The step's torque linearised about its start (the turn
+                // since then, phi, counts in later sub-steps).
+                const Eigen::AngleAxisd turned(Q * start.conjugate());
                 const Mat3 R = Q.toRotationMatrix();
                 const Mat3 I = R * s.moments.asDiagonal() * R.transpose();
-                L = I * (I + h * h * *S).ldlt().solve(L + h * tau);
+                const Vec3 torque = tau - *S * (turned.angle() * turned.axis());
+                L = I * (I + h * h * *S).ldlt().solve(L + h * torque);
             } else {
                 L += h * tau;
             }
