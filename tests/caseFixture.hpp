@@ -108,6 +108,24 @@ public:
         return *this;
     }
 
+    // The dropMagnet tutorial's scene: a 6 mm N42 cube 2.5 cm above a fixed
+    // disc magnet, tilted by 40 degrees, on ODE with a ground; `moreBodies`
+    // (bodies.yaml list items) added, `rigidBodyExtra` appended to
+    // rigidBody.yaml. controlDict and magSchemes are the caller's.
+    TempCase& dropMagnet(const std::string& moreBodies = "", const std::string& rigidBodyExtra = "") {
+        write("constant/materials.yaml", "N42: {model: permanent, Br: 1.3, density: 7500}\n");
+        write("constant/bodies.yaml",
+              "bodies:\n"
+              "  - {name: disc, geometry: {cylinder: {radius: 0.01, height: 0.004, segments: 48}}, material: N42,\n"
+              "     magnetization: [0, 0, 1], position: [0, 0, 0.002], motion: fixed}\n"
+              "  - {name: cube, geometry: {box: {size: [0.006, 0.006, 0.006]}}, material: N42,\n"
+              "     magnetization: [0, 0, 1], position: [0.003, 0, 0.025], orientation: {axis: [1, 0, 0], angle: 40}}\n" +
+                  moreBodies);
+        write("constant/rigidBody.yaml", "type: ODE\ngravity: [0, 0, -9.81]\nground: {height: 0}\n"
+                                         "contact: {friction: 0.5, restitution: 0.1}\n" + rigidBodyExtra);
+        return *this;
+    }
+
 private:
     std::filesystem::path dir_;
 };

@@ -141,15 +141,7 @@ std::string dropAt(magtest::TempCase& c, const std::string& dt, const std::strin
     c.write("system/controlDict.yaml", "endTime: 0.3\ndeltaT: " + dt + "\nwriteInterval: 0.05\nmagneticStiffness: " +
                                            stiffness + "\n");
     c.write("system/magSchemes.yaml", "field: {type: MBM, quadrature: {type: gauss, n: 6}, overlap: amperian}\n");
-    c.write("constant/materials.yaml", "N42: {model: permanent, Br: 1.3, density: 7500}\n");
-    c.write("constant/bodies.yaml",
-            "bodies:\n"
-            "  - {name: disc, geometry: {cylinder: {radius: 0.01, height: 0.004, segments: 48}}, material: N42,\n"
-            "     magnetization: [0, 0, 1], position: [0, 0, 0.002], motion: fixed}\n"
-            "  - {name: cube, geometry: {box: {size: [0.006, 0.006, 0.006]}}, material: N42,\n"
-            "     magnetization: [0, 0, 1], position: [0.003, 0, 0.025], orientation: {axis: [1, 0, 0], angle: 40}}\n");
-    c.write("constant/rigidBody.yaml", "type: ODE\ngravity: [0, 0, -9.81]\nground: {height: 0}\n"
-                                       "contact: {friction: 0.5, restitution: 0.1}\n");
+    c.dropMagnet();
     REQUIRE(magtest::runApp(c.dir(), "magFoam", "log") == 0);
     return magtest::slurp(c.dir() / "log");
 }
