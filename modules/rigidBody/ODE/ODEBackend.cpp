@@ -491,17 +491,11 @@ public:
             const dBodyID body = entries_[i].body;
             if (!body || !dBodyIsEnabled(body) || stiffness[i].isZero(0.0)) continue;
             dBodyGetMass(body, &own[i]);
-            const dReal* q = dBodyGetQuaternion(body);
-            const Eigen::AngleAxisd turned(Quat(q[0], q[1], q[2], q[3]) * start[i].conjugate());
+            const Eigen::AngleAxisd turned(quaternionOf(body) * start[i].conjugate());
             const Vec3 back = -stiffness[i] * (turned.angle() * turned.axis());
             dBodyAddTorque(body, back.x(), back.y(), back.z());
-            const dReal* r = dBodyGetRotation(body); // row-major 3x4
-            Mat3 R;
-            for (int a = 0; a < 3; ++a)
-                for (int b = 0; b < 3; ++b) R(a, b) = r[4 * a + b];
-            Mat3 I;
-            for (int a = 0; a < 3; ++a)
-                for (int b = 0; b < 3; ++b) I(a, b) = own[i].I[4 * a + b];
+            const Mat3 R = matrixOf(dBodyGetRotation(body));
+            const Mat3 I = matrixOf(own[i].I);
             const Mat3 stiff = I + h * h * R.transpose() * stiffness[i] * R;
             dMass m = own[i];
             dMassSetParameters(&m, own[i].mass, 0, 0, 0, stiff(0, 0), stiff(1, 1), stiff(2, 2), stiff(0, 1),
@@ -523,18 +517,28 @@ public:
     std::vector<Quat> orientations() const {
         std::vector<Quat> out(entries_.size(), Quat::Identity());
         for (std::size_t i = 0; i < entries_.size(); ++i)
-            if (const dBodyID body = entries_[i].body) {
-                const dReal* q = dBodyGetQuaternion(body);
-                out[i] = Quat(q[0], q[1], q[2], q[3]);
-            }
+            if (const dBodyID body = entries_[i].body) out[i] = quaternionOf(body);
         return out;
     }
+    // The stiffened bodies get their own mass back, and ODE's gyroscopic term
+    // (on for every body this backend makes: ODE's default, never changed).
     void unstiffen(const std::vector<Mat3>& stiffness, const std::vector<dMass>& own) {
         for (std::size_t i = 0; i < stiffness.size() && i < entries_.size(); ++i)
             if (entries_[i].body && own[i].mass > 0) {
                 dBodySetMass(entries_[i].body, &own[i]);
                 dBodySetGyroscopicMode(entries_[i].body, 1);
             }
+    }
+    static Quat quaternionOf(dBodyID body) {
+        const dReal* q = dBodyGetQuaternion(body);
+        return Quat(q[0], q[1], q[2], q[3]);
+    }
+    // An ODE dMatrix3 (rows of 4) as a 3x3 matrix.
+    static Mat3 matrixOf(const dReal* m) {
+        Mat3 out;
+        for (int a = 0; a < 3; ++a)
+            for (int b = 0; b < 3; ++b) out(a, b) = m[4 * a + b];
+        return out;
     }
 
     // A sleeping body is a disabled ODE body: not stepped, at rest. ODE
@@ -977,11 +981,10 @@ private:
     static void pull(Body& b, const Entry& e) {
         if (e.body) {
             const dReal* p = dBodyGetPosition(e.body);
-            const dReal* q = dBodyGetQuaternion(e.body);
             const dReal* v = dBodyGetLinearVel(e.body);
             const dReal* w = dBodyGetAngularVel(e.body);
             b.position = Vec3(p[0], p[1], p[2]);
-            b.orientation = Quat(q[0], q[1], q[2], q[3]);
+            b.orientation = quaternionOf(e.body);
             b.velocity = Vec3(v[0], v[1], v[2]);
             b.angularVelocity = Vec3(w[0], w[1], w[2]);
         } else {

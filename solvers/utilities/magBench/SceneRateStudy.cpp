@@ -39,6 +39,15 @@ std::filesystem::path siblingApp(const std::string& name) {
     return self.parent_path() / name;
 }
 
+// Warnings only while it lives; the level before afterwards.
+struct QuietLog {
+    spdlog::level::level_enum level = spdlog::get_level();
+    QuietLog() { spdlog::set_level(spdlog::level::warn); }
+    ~QuietLog() { spdlog::set_level(level); }
+    QuietLog(const QuietLog&) = delete;
+    QuietLog& operator=(const QuietLog&) = delete;
+};
+
 // A fresh copy of the case's constant/ and system/ (no time folders).
 std::filesystem::path scratchCopy(const std::filesystem::path& src, const std::filesystem::path& dst) {
     std::filesystem::remove_all(dst);
@@ -76,17 +85,13 @@ void sceneRateStudy(const Dict& scenes, const std::vector<int>& counts, const st
             solver::RunOptions options;
             options.onWrite = [&](const solver::WriteRecord& r) { steps = r.step; };
             const double simulated = c.control().endTime - c.control().startTime;
-            const auto level = spdlog::get_level();
-            spdlog::set_level(spdlog::level::warn); // the run's own log: warnings only
-            const auto t0 = clock::now();
-            try {
+            double wall = 0;
+            {
+                const QuietLog quiet; // the run's own log: warnings only
+                const auto t0 = clock::now();
                 solver::run(c, options);
-            } catch (...) {
-                spdlog::set_level(level);
-                throw;
+                wall = std::chrono::duration<double>(clock::now() - t0).count();
             }
-            const double wall = std::chrono::duration<double>(clock::now() - t0).count();
-            spdlog::set_level(level);
             const double rate = simulated / wall;
             csv << '"' << name << "\"," << t << ',' << simulated << ',' << wall << ',' << steps << ',' << rate << ','
                 << paper << ',' << rate / paper << '\n';
