@@ -226,6 +226,7 @@ void run(Case& c, const RunOptions& options) {
     stats.summary();
     audit.summary(bodies);
     sleeping.summary();
+    spdlog::info("  rigid body: {}", backend->describe());
     spdlog::info("  field: {}", magnets.fieldEvaluator().describe());
     if (const FieldStats fs = magnets.fieldEvaluator().stats(); !fs.counts.empty()) {
         spdlog::info("  field counters: {}", fs.format());

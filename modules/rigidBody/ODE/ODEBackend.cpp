@@ -37,6 +37,13 @@
 //   under 1000 g forces rest exactly (no iteration residual, no creep); its
 //   cost grows with the cube of the contact count, fine for tens of magnets.
 //   quickStep (iterative, O(contacts)) for large heaps.
+// - frictionBound normalForce: dWorldStep's findex rows take their friction
+//   bound from a solve without friction; where that solve leaves a contact
+//   unloaded, it slides with zero friction however hard it is pressed (four
+//   magnets in a chain glided over the ground for ever). Such a sub-step is
+//   solved again (up to 3 times) with each contact's friction bounded by mu
+//   times its normal force from the solve before
+//   (docs/rigid-bodies.md#friction-bounds).
 //
 // Bodies. The ODE body origin is the COM: mass and inertia tensor about the
 // COM from the mesh (Body::mass, inertiaBody; dMassSetParameters), finite
@@ -84,8 +91,9 @@
 // the contact joints and so the round-off of the LCP solution (ODE moves a
 // geom to the front of the space when it moves; a restart would create them
 // in another order). Nothing else: dWorldStep has no warm starting, joint
-// feedback is off, auto-disable is off, contact joints are made anew every
-// sub-step, the sub-step count comes from the state. Both are written as
+// feedback is read only within the sub-step that made it, auto-disable is
+// off, contact joints are made anew every sub-step, the sub-step count
+// comes from the state. Both are written as
 // <time>/rigidBody.yaml
 //   type: ODE
 //   random: 12345                        # ODE's dRandGetSeed()
@@ -107,6 +115,7 @@
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
+#include <deque>
 #include <exception>
 #include <limits>
 #include <map>
@@ -335,6 +344,7 @@ public:
         maxCorrectingVelocity_ = c.get<double>("maxCorrectingVelocity", 0.1);
         if (!(maxCorrectingVelocity_ > 0)) c.fail("maxCorrectingVelocity", "maxCorrectingVelocity must be > 0 (m/s)");
         meshCorrection_ = c.get<bool>("meshCorrection", true);
+        frictionBounds_ = c.getWord("frictionBound", {"normalForce", "findex"}, "normalForce") == "normalForce";
 
         c.reportUnused();
 
@@ -459,11 +469,37 @@ public:
             }
             flushPool();
             const std::vector<dMass> own = stiffen(stiffness, start, h);
+            // dWorldStep bounds each friction row by mu times its contact's
+            // normal force as solved *before* the friction rows enter the LCP
+            // (ODE's findex rows): where that first solve leaves a contact
+            // unloaded, it slides without friction however hard it is pressed.
+            // A sub-step that breaks Coulomb's law is taken again with each
+            // contact's friction bounded by mu times its normal force from the
+            // solve before: a fixed-point iteration that converges in one or
+            // two more solves (docs/rigid-bodies.md#friction-bounds).
+            const bool check = frictionBounds_ && !quickStep_ && !made_.empty();
+            if (check) snapshot();
             dRandSetSeed(rng_);
             if (quickStep_)
                 dWorldQuickStep(world_, h);
             else
                 dWorldStep(world_, h);
+            for (int pass = 1; check && pass < kFrictionPasses && frictionViolated(); ++pass) {
+                stats_.frictionRedone += 1;
+                restoreSnapshot();
+                dJointGroupEmpty(group_);
+                for (Made& m : made_) {
+                    dContact joint = m.contact;
+                    joint.surface.mode &= ~dContactApprox1;
+                    joint.surface.mu = s_.friction * std::max(m.normalForce, 0.0);
+                    const dJointID id = dJointCreateContact(world_, group_, &joint);
+                    dJointAttach(id, m.b1, m.b2);
+                    dJointSetFeedback(id, &m.feedback);
+                }
+                dRandSetSeed(rng_);
+                dWorldStep(world_, h);
+            }
+            made_.clear();
             unstiffen(stiffness, own);
             rng_ = dRandGetSeed();
             dJointGroupEmpty(group_);
@@ -646,13 +682,14 @@ public:
         if (stats_.steps > 0)
             os << "; sub-steps taken " << stats_.subSteps << " in " << stats_.steps << " steps; contacts found "
                << stats_.contactsFound << ", dropped " << stats_.contactsDropped << ", merged " << stats_.contactsMerged
-               << ", used " << stats_.contactsUsed;
+               << ", used " << stats_.contactsUsed << "; sub-steps solved again for friction "
+               << stats_.frictionRedone;
         return os.str();
     }
 
     // Counters of the contact post-processing (for tests and logs).
     struct Stats {
-        long contactsFound = 0, contactsDropped = 0, contactsMerged = 0, contactsUsed = 0;
+        long contactsFound = 0, contactsDropped = 0, contactsMerged = 0, contactsUsed = 0, frictionRedone = 0;
         long steps = 0, subSteps = 0;
     };
 
@@ -766,7 +803,91 @@ private:
         joint.surface.bounce_vel = s_.bounceVelocity;
         joint.surface.soft_erp = s_.erp;
         joint.surface.soft_cfm = cfm_;
-        dJointAttach(dJointCreateContact(world_, group_, &joint), b1, b2);
+        const dJointID id = dJointCreateContact(world_, group_, &joint);
+        dJointAttach(id, b1, b2);
+        if (frictionBounds_ && s_.friction > 0) {
+            made_.push_back({joint, b1, b2, {}, 0});
+            dJointSetFeedback(id, &made_.back().feedback);
+        }
+    }
+
+    // The contact joints of this sub-step, with ODE's answer (feedback).
+    struct Made {
+        dContact contact;
+        dBodyID b1, b2;
+        dJointFeedback feedback;
+        double normalForce;
+    };
+    std::deque<Made> made_; // a deque: the feedback's address must not move
+
+    // Did a contact break Coulomb's law: slide while its friction stayed
+    // below mu times its normal force, or hold with more than that? Per
+    // friction direction (ODE's dPlaneSpace of the normal, as the contact
+    // joint uses it): sliding is faster than 1e-5 m/s (well above the LCP's
+    // round-off, 100x below the sleep speed), and the bound is met within 1 %.
+    // Stores each contact's normal force for the next solve.
+    static constexpr int kFrictionPasses = 4;
+    bool frictionViolated() {
+        bool violated = false;
+        for (Made& m : made_) {
+            const dContactGeom& g = m.contact.geom;
+            const Vec3 n(g.normal[0], g.normal[1], g.normal[2]), p(g.pos[0], g.pos[1], g.pos[2]);
+            // Force on the side of body 1 (ODE reports the force on body 2 where there is no body 1).
+            const Vec3 f = m.b1 ? Vec3(m.feedback.f1[0], m.feedback.f1[1], m.feedback.f1[2])
+                                : Vec3(-m.feedback.f2[0], -m.feedback.f2[1], -m.feedback.f2[2]);
+            m.normalForce = f.dot(n);
+            if (!(m.normalForce > 0)) continue;
+            const Vec3 v = pointVelocity(m.b1, p) - pointVelocity(m.b2, p);
+            dVector3 t1, t2;
+            dPlaneSpace(g.normal, t1, t2);
+            for (const dVector3* t : {&t1, &t2}) {
+                const Vec3 dir((*t)[0], (*t)[1], (*t)[2]);
+                const double ft = std::abs(f.dot(dir)), bound = s_.friction * m.normalForce;
+                if ((std::abs(v.dot(dir)) > 1e-5 && ft < 0.99 * bound) || ft > 1.01 * bound + 1e-9)
+                    violated = true;
+            }
+        }
+        return violated;
+    }
+    static Vec3 pointVelocity(dBodyID body, const Vec3& p) {
+        if (!body) return Vec3::Zero();
+        dVector3 v;
+        dBodyGetPointVel(body, p.x(), p.y(), p.z(), v);
+        return Vec3(v[0], v[1], v[2]);
+    }
+
+    // Everything a world step changes in the bodies, for taking it again:
+    // pose, velocities, the force and torque accumulated for it, enabled.
+    struct Saved {
+        dBodyID body;
+        dReal position[3], quaternion[4], velocity[3], spin[3], force[3], torque[3];
+        int enabled;
+    };
+    std::vector<Saved> saved_;
+    void snapshot() {
+        saved_.clear();
+        for (const Entry& e : entries_) {
+            if (!e.body) continue;
+            Saved s{};
+            s.body = e.body;
+            const dReal *x = dBodyGetPosition(e.body), *q = dBodyGetQuaternion(e.body), *v = dBodyGetLinearVel(e.body),
+                        *w = dBodyGetAngularVel(e.body), *F = dBodyGetForce(e.body), *T = dBodyGetTorque(e.body);
+            std::copy(x, x + 3, s.position), std::copy(q, q + 4, s.quaternion), std::copy(v, v + 3, s.velocity);
+            std::copy(w, w + 3, s.spin), std::copy(F, F + 3, s.force), std::copy(T, T + 3, s.torque);
+            s.enabled = dBodyIsEnabled(e.body);
+            saved_.push_back(s);
+        }
+    }
+    void restoreSnapshot() {
+        for (const Saved& s : saved_) {
+            dBodySetPosition(s.body, s.position[0], s.position[1], s.position[2]);
+            setQuaternionExactly(s.body, s.quaternion);
+            dBodySetLinearVel(s.body, s.velocity[0], s.velocity[1], s.velocity[2]);
+            dBodySetAngularVel(s.body, s.spin[0], s.spin[1], s.spin[2]);
+            dBodySetForce(s.body, s.force[0], s.force[1], s.force[2]);
+            dBodySetTorque(s.body, s.torque[0], s.torque[1], s.torque[2]);
+            if (s.enabled) dBodyEnable(s.body); else dBodyDisable(s.body);
+        }
     }
 
     // Contacts of two bodies' pieces, gathered over one collision pass; keyed
@@ -1005,6 +1126,7 @@ private:
     // Settings.
     ContactSettings s_;
     double cfm_ = 1e-9, maxCorrectingVelocity_ = 0.1;
+    bool frictionBounds_ = true;
     int maxContacts_ = 8, iterations_ = 20;
     bool quickStep_ = false, meshOnly_ = false, usePieces_ = true, meshCorrection_ = true;
     unsigned long seed_ = 0, rng_ = 0;
@@ -1037,6 +1159,10 @@ const TypeDoc kDoc{
      {"ground.height", "m", "height of the ground plane"},
      {"contact", "-", "contact parameters of every pair"},
      {"contact.friction", "-", "Coulomb coefficient mu (friction pyramid scaled by the normal force), >= 0"},
+     {"contact.frictionBound", "-",
+      "normalForce (a sub-step whose contacts break Coulomb's law is solved again, up to 3 times, with each "
+      "contact's friction bounded by mu times its normal force from the solve before) or findex (ODE's own "
+      "bound, from a solve without friction)"},
      {"contact.restitution", "-", "0..1"},
      {"contact.bounceVelocity", "m/s", "slower impacts do not bounce"},
      {"contact.erp", "-", "share of the penetration corrected per step, (0, 1]"},
