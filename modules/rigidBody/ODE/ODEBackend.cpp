@@ -41,9 +41,9 @@
 //   bound from a solve without friction; where that solve leaves a contact
 //   unloaded, it slides with zero friction however hard it is pressed (four
 //   magnets in a chain glided over the ground for ever). A sub-step with
-//   such a starved contact is solved once more, that contact's friction
-//   bounded by mu times its normal force from the first solve
-//   (docs/rigid-bodies.md#friction-bounds).
+//   such a starved contact is solved once more (its islands only), that
+//   contact's friction bounded by mu times its normal force from the first
+//   solve (docs/rigid-bodies.md#friction-bounds).
 //
 // Bodies. The ODE body origin is the COM: mass and inertia tensor about the
 // COM from the mesh (Body::mass, inertiaBody; dMassSetParameters), finite
@@ -124,6 +124,7 @@
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
+#include <unordered_map>
 #include <utility>
 
 namespace mag {
@@ -486,9 +487,24 @@ public:
                 dWorldStep(world_, h);
             if (check && markStarvedFriction()) {
                 stats_.frictionRedone += 1;
-                restoreSnapshot();
+                // Only the islands (bodies joined by contacts) with a starved
+                // contact are solved again. dWorldStep solves islands apart,
+                // so the others would come out the same, bit for bit: they
+                // keep this solve and sit the second one out disabled.
+                const std::vector<char> redo = starvedIslands();
+                std::vector<char> wasEnabled(saved_.size(), 0);
+                for (std::size_t k = 0; k < saved_.size(); ++k) {
+                    if (redo[k]) {
+                        restore(saved_[k]);
+                        stats_.frictionRedoneBodies += 1;
+                    } else {
+                        wasEnabled[k] = static_cast<char>(dBodyIsEnabled(saved_[k].body));
+                        dBodyDisable(saved_[k].body);
+                    }
+                }
                 dJointGroupEmpty(group_);
                 for (const Made& m : made_) {
+                    if (!redo[savedIndex(m.b1 ? m.b1 : m.b2)]) continue;
                     dContact joint = m.contact;
                     if (m.starved) {
                         joint.surface.mode &= ~dContactApprox1;
@@ -498,6 +514,8 @@ public:
                 }
                 dRandSetSeed(rng_);
                 dWorldStep(world_, h);
+                for (std::size_t k = 0; k < saved_.size(); ++k)
+                    if (wasEnabled[k]) dBodyEnable(saved_[k].body);
             }
             made_.clear();
             unstiffen(stiffness, own);
@@ -683,13 +701,13 @@ public:
             os << "; sub-steps taken " << stats_.subSteps << " in " << stats_.steps << " steps; contacts found "
                << stats_.contactsFound << ", dropped " << stats_.contactsDropped << ", merged " << stats_.contactsMerged
                << ", used " << stats_.contactsUsed << "; sub-steps solved again for friction "
-               << stats_.frictionRedone;
+               << stats_.frictionRedone << " (bodies in them " << stats_.frictionRedoneBodies << ")";
         return os.str();
     }
 
     // Counters of the contact post-processing (for tests and logs).
     struct Stats {
-        long contactsFound = 0, contactsDropped = 0, contactsMerged = 0, contactsUsed = 0, frictionRedone = 0;
+        long contactsFound = 0, contactsDropped = 0, contactsMerged = 0, contactsUsed = 0, frictionRedone = 0, frictionRedoneBodies = 0;
         long steps = 0, subSteps = 0;
     };
 
@@ -866,8 +884,10 @@ private:
         int enabled;
     };
     std::vector<Saved> saved_;
+    std::unordered_map<dBodyID, std::size_t> savedIndex_;
     void snapshot() {
         saved_.clear();
+        savedIndex_.clear();
         for (const Entry& e : entries_) {
             if (!e.body) continue;
             Saved s{};
@@ -877,19 +897,36 @@ private:
             std::copy(x, x + 3, s.position), std::copy(q, q + 4, s.quaternion), std::copy(v, v + 3, s.velocity);
             std::copy(w, w + 3, s.spin), std::copy(F, F + 3, s.force), std::copy(T, T + 3, s.torque);
             s.enabled = dBodyIsEnabled(e.body);
+            savedIndex_[e.body] = saved_.size();
             saved_.push_back(s);
         }
     }
-    void restoreSnapshot() {
-        for (const Saved& s : saved_) {
-            dBodySetPosition(s.body, s.position[0], s.position[1], s.position[2]);
-            setQuaternionExactly(s.body, s.quaternion);
-            dBodySetLinearVel(s.body, s.velocity[0], s.velocity[1], s.velocity[2]);
-            dBodySetAngularVel(s.body, s.spin[0], s.spin[1], s.spin[2]);
-            dBodySetForce(s.body, s.force[0], s.force[1], s.force[2]);
-            dBodySetTorque(s.body, s.torque[0], s.torque[1], s.torque[2]);
-            if (s.enabled) dBodyEnable(s.body); else dBodyDisable(s.body);
-        }
+    static void restore(const Saved& s) {
+        dBodySetPosition(s.body, s.position[0], s.position[1], s.position[2]);
+        setQuaternionExactly(s.body, s.quaternion);
+        dBodySetLinearVel(s.body, s.velocity[0], s.velocity[1], s.velocity[2]);
+        dBodySetAngularVel(s.body, s.spin[0], s.spin[1], s.spin[2]);
+        dBodySetForce(s.body, s.force[0], s.force[1], s.force[2]);
+        dBodySetTorque(s.body, s.torque[0], s.torque[1], s.torque[2]);
+        if (s.enabled) dBodyEnable(s.body); else dBodyDisable(s.body);
+    }
+    std::size_t savedIndex(dBodyID body) const { return savedIndex_.at(body); }
+    // Per saved body: does it share an island (bodies joined by contacts;
+    // fixed bodies and the ground join none) with a starved contact?
+    std::vector<char> starvedIslands() const {
+        std::vector<std::size_t> parent(saved_.size());
+        for (std::size_t k = 0; k < parent.size(); ++k) parent[k] = k;
+        auto root = [&](std::size_t k) {
+            while (parent[k] != k) k = parent[k] = parent[parent[k]];
+            return k;
+        };
+        for (const Made& m : made_)
+            if (m.b1 && m.b2) parent[root(savedIndex(m.b1))] = root(savedIndex(m.b2));
+        std::vector<char> starvedRoot(saved_.size(), 0), redo(saved_.size(), 0);
+        for (const Made& m : made_)
+            if (m.starved) starvedRoot[root(savedIndex(m.b1 ? m.b1 : m.b2))] = 1;
+        for (std::size_t k = 0; k < saved_.size(); ++k) redo[k] = starvedRoot[root(k)];
+        return redo;
     }
 
     // Contacts of two bodies' pieces, gathered over one collision pass; keyed
