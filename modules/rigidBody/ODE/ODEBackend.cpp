@@ -688,7 +688,8 @@ public:
         os << "ODE " << (quickStep_ ? "dWorldQuickStep (" + std::to_string(iterations_) + " iterations)" : "dWorldStep")
            << ", gravity [" << s_.gravity.x() << ", " << s_.gravity.y() << ", " << s_.gravity.z() << "] m/s^2";
         if (s_.groundHeight) os << ", ground z = " << *s_.groundHeight;
-        os << ", friction " << s_.friction << ", restitution " << s_.restitution << ", erp " << s_.erp << ", cfm " << cfm_
+        os << ", friction " << s_.friction << (frictionBounds_ ? "" : " (bound: findex)") << ", restitution "
+           << s_.restitution << ", erp " << s_.erp << ", cfm " << cfm_
            << ", maxContacts " << maxContacts_ << ", subSteps " << s_.subSteps;
         // Bodies per collision shape, then (once stepping) what the steps did.
         std::map<std::string, int> count;
