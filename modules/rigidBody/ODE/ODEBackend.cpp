@@ -115,7 +115,6 @@
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
-#include <deque>
 #include <exception>
 #include <limits>
 #include <map>
@@ -124,7 +123,6 @@
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
-#include <unordered_map>
 #include <utility>
 
 namespace mag {
@@ -393,6 +391,7 @@ public:
             smallest = std::min(smallest, e.scale), largest = std::max(largest, e.scale);
             if (!b.fixed) {
                 e.body = dBodyCreate(world_);
+                dBodySetData(e.body, reinterpret_cast<void*>(i)); // its entry, for entryOf()
                 setMass(e.body, b);
                 e.mass = b.mass();
                 dBodySetFiniteRotationMode(e.body, 1);
@@ -479,7 +478,10 @@ public:
             // friction bounded by mu times the normal force just solved (the
             // others keep ODE's findex bound).
             const bool check = frictionBounds_ && !quickStep_ && !made_.empty();
-            if (check) snapshot();
+            if (check) {
+                snapshot();
+                for (Made& m : made_) dJointSetFeedback(m.joint, &m.feedback); // made_ is complete now
+            }
             dRandSetSeed(rng_);
             if (quickStep_)
                 dWorldQuickStep(world_, h);
@@ -494,6 +496,7 @@ public:
                 const std::vector<char> redo = starvedIslands();
                 std::vector<char> wasEnabled(saved_.size(), 0);
                 for (std::size_t k = 0; k < saved_.size(); ++k) {
+                    if (!saved_[k].body) continue; // fixed
                     if (redo[k]) {
                         restore(saved_[k]);
                         stats_.frictionRedoneBodies += 1;
@@ -504,7 +507,7 @@ public:
                 }
                 dJointGroupEmpty(group_);
                 for (const Made& m : made_) {
-                    if (!redo[savedIndex(m.b1 ? m.b1 : m.b2)]) continue;
+                    if (!redo[entryOf(m.b1 ? m.b1 : m.b2)]) continue;
                     dContact joint = m.contact;
                     if (m.starved) {
                         joint.surface.mode &= ~dContactApprox1;
@@ -708,7 +711,8 @@ public:
 
     // Counters of the contact post-processing (for tests and logs).
     struct Stats {
-        long contactsFound = 0, contactsDropped = 0, contactsMerged = 0, contactsUsed = 0, frictionRedone = 0, frictionRedoneBodies = 0;
+        long contactsFound = 0, contactsDropped = 0, contactsMerged = 0, contactsUsed = 0;
+        long frictionRedone = 0, frictionRedoneBodies = 0; // sub-steps solved again, bodies in them
         long steps = 0, subSteps = 0;
     };
 
@@ -824,21 +828,22 @@ private:
         joint.surface.soft_cfm = cfm_;
         const dJointID id = dJointCreateContact(world_, group_, &joint);
         dJointAttach(id, b1, b2);
-        if (frictionBounds_ && s_.friction > 0) {
-            made_.push_back({joint, b1, b2, {}, 0, false});
-            dJointSetFeedback(id, &made_.back().feedback);
-        }
+        if (frictionBounds_ && s_.friction > 0) made_.push_back({joint, b1, b2, id, {}, 0, false});
     }
 
-    // The contact joints of this sub-step, with ODE's answer (feedback).
+    // The contact joints of this sub-step, with ODE's answer (feedback; its
+    // address is handed to ODE once made_ is complete, before the step).
     struct Made {
         dContact contact;
         dBodyID b1, b2;
+        dJointID joint;
         dJointFeedback feedback;
         double normalForce;
         bool starved;
     };
-    std::deque<Made> made_; // a deque: the feedback's address must not move
+    std::vector<Made> made_; // cleared every sub-step, its storage kept
+    // The entries_ index of an ODE body (its user data, set at setup).
+    static std::size_t entryOf(dBodyID body) { return reinterpret_cast<std::size_t>(dBodyGetData(body)); }
 
     // Marks the contacts whose friction was starved: sliding (faster than
     // 1e-5 m/s, well above the LCP's round-off and 100x below the sleep
@@ -879,27 +884,25 @@ private:
 
     // Everything a world step changes in the bodies, for taking it again:
     // pose, velocities, the force and torque accumulated for it, enabled.
+    // One per entry (body null for fixed ones), storage kept between steps.
     struct Saved {
         dBodyID body;
         dReal position[3], quaternion[4], velocity[3], spin[3], force[3], torque[3];
         int enabled;
     };
     std::vector<Saved> saved_;
-    std::unordered_map<dBodyID, std::size_t> savedIndex_;
     void snapshot() {
-        saved_.clear();
-        savedIndex_.clear();
-        for (const Entry& e : entries_) {
-            if (!e.body) continue;
-            Saved s{};
+        saved_.resize(entries_.size());
+        for (std::size_t i = 0; i < entries_.size(); ++i) {
+            const Entry& e = entries_[i];
+            Saved& s = saved_[i];
             s.body = e.body;
+            if (!e.body) continue;
             const dReal *x = dBodyGetPosition(e.body), *q = dBodyGetQuaternion(e.body), *v = dBodyGetLinearVel(e.body),
                         *w = dBodyGetAngularVel(e.body), *F = dBodyGetForce(e.body), *T = dBodyGetTorque(e.body);
             std::copy(x, x + 3, s.position), std::copy(q, q + 4, s.quaternion), std::copy(v, v + 3, s.velocity);
             std::copy(w, w + 3, s.spin), std::copy(F, F + 3, s.force), std::copy(T, T + 3, s.torque);
             s.enabled = dBodyIsEnabled(e.body);
-            savedIndex_[e.body] = saved_.size();
-            saved_.push_back(s);
         }
     }
     static void restore(const Saved& s) {
@@ -911,8 +914,7 @@ private:
         dBodySetTorque(s.body, s.torque[0], s.torque[1], s.torque[2]);
         if (s.enabled) dBodyEnable(s.body); else dBodyDisable(s.body);
     }
-    std::size_t savedIndex(dBodyID body) const { return savedIndex_.at(body); }
-    // Per saved body: does it share an island (bodies joined by contacts;
+    // Per entry: does its body share an island (bodies joined by contacts;
     // fixed bodies and the ground join none) with a starved contact?
     std::vector<char> starvedIslands() const {
         std::vector<std::size_t> parent(saved_.size());
@@ -922,10 +924,10 @@ private:
             return k;
         };
         for (const Made& m : made_)
-            if (m.b1 && m.b2) parent[root(savedIndex(m.b1))] = root(savedIndex(m.b2));
+            if (m.b1 && m.b2) parent[root(entryOf(m.b1))] = root(entryOf(m.b2));
         std::vector<char> starvedRoot(saved_.size(), 0), redo(saved_.size(), 0);
         for (const Made& m : made_)
-            if (m.starved) starvedRoot[root(savedIndex(m.b1 ? m.b1 : m.b2))] = 1;
+            if (m.starved) starvedRoot[root(entryOf(m.b1 ? m.b1 : m.b2))] = 1;
         for (std::size_t k = 0; k < saved_.size(); ++k) redo[k] = starvedRoot[root(k)];
         return redo;
     }
