@@ -171,16 +171,16 @@ void run(Case& c, const RunOptions& options) {
         // The step's length: fixed, or what the motion and stiffness of the
         // awake bodies allow now.
         double proposal = 0.0;
+        std::string limitedBy; // for the progress line
         if (loop.adaptive()) {
-            double stable = 0.0;
-            if (sleeping.anyAsleep()) {
-                stable = audit.stableDeltaT(sleeping.awakeView(bodies), wrenches, control.implicitTorque);
-            } else {
-                stable = audit.stableDeltaT(bodies, wrenches, control.implicitTorque);
-            }
-            proposal = std::min(kMaxGrowth * lastDeltaT, stable);
+            const StepProposal stable =
+                sleeping.anyAsleep() ? audit.stableDeltaT(sleeping.awakeView(bodies), wrenches, control.implicitTorque)
+                                     : audit.stableDeltaT(bodies, wrenches, control.implicitTorque);
+            proposal = std::min(kMaxGrowth * lastDeltaT, stable.deltaT);
+            limitedBy = stable.deltaT <= proposal ? stable.body + ": " + stable.limit : "growth";
         }
         const double dt = loop.begin(proposal);
+        if (loop.adaptive() && dt < proposal) limitedBy = dt >= loop.maxDeltaT() ? "maxDeltaT" : "write time";
         const double t = loop.endOfStep();
         if (soft) writer.writeInduction(t, step, magnetic.induction);
         stats.induction(step, magnetic.induction);
@@ -221,7 +221,7 @@ void run(Case& c, const RunOptions& options) {
             spdlog::info("Stopped by signal at t = {}; state written to {}/", t, timeName(t));
             break;
         }
-        stats.progress(t, step, loop.adaptive() ? dt : 0.0);
+        stats.progress(t, step, loop.adaptive() ? dt : 0.0, limitedBy);
     }
     stats.summary();
     audit.summary(bodies);

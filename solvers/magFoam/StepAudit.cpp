@@ -5,6 +5,7 @@
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -25,23 +26,51 @@ double angleBetween(const Quat& a, const Quat& b) {
     return 2.0 * std::acos(c);
 }
 
-// stableDeltaT for one body (see the header).
-double bodyStableDeltaT(const Body& b, double size, double radius, double smallestInertia, const Wrench& w,
-                        double travel, bool implicitTilt = false) {
+// The largest distance of a point of the body from an axis through its centre
+// of mass along `axis` (body frame), times |axis|: the surface speed of a spin
+// `axis`, or the surface acceleration of an angular acceleration `axis`. The
+// distance from an axis is convex, so the body-frame bounding box's corners
+// bound it.
+double surfaceRate(const std::array<Vec3, 8>& corners, const Vec3& axis) {
+    double r = 0;
+    for (const Vec3& c : corners) r = std::max(r, axis.cross(c).norm());
+    return r;
+}
+
+// stableDeltaT for one body (see the header); `limit` names the criterion that set it.
+double bodyStableDeltaT(const Body& b, const BodyGeometry& g, const Wrench& w, double travel,
+                        bool implicitTilt = false, const char** limit = nullptr) {
     double dt = std::numeric_limits<double>::infinity();
+    const char* why = "";
+    auto take = [&](double candidate, const char* name) {
+        if (candidate < dt) dt = candidate, why = name;
+    };
     // Travel of the centre and of the surface in a step: v dt + a dt^2 <= travel size
     // (the backends' semi-implicit Euler moves by the new velocity, v + a dt).
     auto within = [&](double v, double a) {
-        const double d = travel * size;
+        const double d = travel * g.size;
         if (a > 0) return 2.0 * d / (v + std::sqrt(v * v + 4.0 * a * d));
         return v > 0 ? d / v : std::numeric_limits<double>::infinity();
     };
-    dt = std::min(within(b.velocity.norm(), w.force.norm() / b.mass()),
-                  within(b.angularVelocity.norm() * radius,
-                         smallestInertia > 0 ? w.totalTorque().norm() / smallestInertia * radius : 0.0));
-    double omega2 = w.force.norm() / (b.mass() * size);
-    if (smallestInertia > 0 && !implicitTilt) omega2 = std::max(omega2, std::abs(w.bodyEnergy()) / smallestInertia);
-    if (omega2 > 0) dt = std::min(dt, 2.0 * std::acos(-1.0) / std::sqrt(omega2) / kStepsPerPeriod);
+    take(within(b.velocity.norm(), w.force.norm() / b.mass()), "travel");
+    // The surface's speed and acceleration from the spin and the magnetic
+    // torque (I^-1 tau: a clip's torque about its long axis meets its smallest
+    // inertia, about its normal its largest), in the body frame.
+    const Quat toBody = b.orientation.conjugate();
+    const Vec3 spin = toBody * b.angularVelocity;
+    const Vec3 alpha = g.inverseInertia * (toBody * w.totalTorque());
+    take(within(surfaceRate(g.corners, spin), surfaceRate(g.corners, alpha)), "turn");
+    const double twoPi = 2.0 * std::acos(-1.0);
+    const double forceOmega2 = w.force.norm() / (b.mass() * g.size);
+    if (forceOmega2 > 0) take(twoPi / std::sqrt(forceOmega2) / kStepsPerPeriod, "force stiffness");
+    if (!implicitTilt) {
+        // A moment m in a field tilts with stiffness |U| about the axes normal
+        // to m (ImplicitTorque.hpp): omega^2 = |U| x the largest eigenvalue of
+        // P I^-1 P, P the projection normal to m.
+        const double tiltOmega2 = std::abs(w.bodyEnergy()) * g.tiltCompliance(toBody * b.magneticMoment());
+        if (tiltOmega2 > 0) take(twoPi / std::sqrt(tiltOmega2) / kStepsPerPeriod, "tilt stiffness");
+    }
+    if (limit) *limit = why;
     return dt;
 }
 
@@ -49,20 +78,37 @@ std::string seconds(double dt) { return std::isfinite(dt) ? fmt::format("{:.2g} 
 
 } // namespace
 
+BodyGeometry::BodyGeometry(const Body& body) {
+    const SurfaceMesh& m = body.shape->mesh;
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    for (const Vec3& v : m.vertices) {
+        lo = lo.cwiseMin(v);
+        hi = hi.cwiseMax(v);
+    }
+    if (m.vertices.empty()) lo = hi = Vec3::Zero();
+    size = (hi - lo).minCoeff();
+    radius = body.shape->boundingRadius;
+    for (int c = 0; c < 8; ++c)
+        corners[c] = Vec3(c & 1 ? hi.x() : lo.x(), c & 2 ? hi.y() : lo.y(), c & 4 ? hi.z() : lo.z());
+    const Mat3 I = body.inertiaBody();
+    smallestInertia = Eigen::SelfAdjointEigenSolver<Mat3>(I).eigenvalues().minCoeff();
+    if (smallestInertia > 0) inverseInertia = I.inverse();
+}
+
+double BodyGeometry::tiltCompliance(const Vec3& momentBody) const {
+    if (!(smallestInertia > 0)) return 0.0;
+    const double mm = momentBody.squaredNorm();
+    if (!(mm > 0)) return 1.0 / smallestInertia; // no moment: every axis counts
+    const Mat3 P = Mat3::Identity() - momentBody * momentBody.transpose() / mm;
+    const Mat3 C = P * inverseInertia * P;
+    return Eigen::SelfAdjointEigenSolver<Mat3>(0.5 * (C + C.transpose())).eigenvalues().maxCoeff();
+}
+
 StepAudit::StepAudit(const std::vector<Body>& bodies, const AuditSettings& settings, double fieldTolerance,
                      const Vec3& gravity)
-    : settings_(settings), tolerance_(fieldTolerance), gravity_(gravity), tracks_(bodies.size()) {
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-        const SurfaceMesh& m = bodies[i].shape->mesh;
-        Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-        for (const Vec3& v : m.vertices) {
-            lo = lo.cwiseMin(v);
-            hi = hi.cwiseMax(v);
-        }
-        tracks_[i].size = m.vertices.empty() ? 0.0 : (hi - lo).minCoeff();
-        tracks_[i].radius = bodies[i].shape->boundingRadius;
-        tracks_[i].smallestInertia = Eigen::SelfAdjointEigenSolver<Mat3>(bodies[i].inertiaBody()).eigenvalues().minCoeff();
-    }
+    : settings_(settings), tolerance_(fieldTolerance), gravity_(gravity) {
+    tracks_.reserve(bodies.size());
+    for (const Body& b : bodies) tracks_.emplace_back(b);
 }
 
 std::optional<std::string> StepAudit::check(long step, double t, double dt, const std::vector<BodyState>& before,
@@ -99,17 +145,21 @@ std::optional<std::string> StepAudit::check(long step, double t, double dt, cons
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         const Body& b = bodies[i];
         Track& k = tracks_[i];
-        if (b.fixed || k.size <= 0) continue;
+        if (b.fixed || k.size() <= 0) continue;
         const double speed = b.velocity.norm(), spin = b.angularVelocity.norm();
         if (speed > maxSpeed_) maxSpeed_ = speed, fastest_ = b.name;
         const double travel = (b.position - before[i].position).norm();
-        const double arc = angleBetween(b.orientation, before[i].orientation) * k.radius;
-        const double moved = std::max(travel, arc) / k.size;
+        // The surface's largest displacement by the step's turn (a box corner's).
+        double arc = 0;
+        for (const Vec3& c : k.geometry.corners)
+            arc = std::max(arc, (b.orientation * c - before[i].orientation * c).norm());
+        const double moved = std::max(travel, arc) / k.size();
 
         // Safe step: the motion criterion, and 1/20 of the magnetic oscillation's
         // period from the stiffness between the last two steps' starts.
-        const double surfaceSpeed = std::max(speed, spin * k.radius);
-        double safe = surfaceSpeed > 0 ? settings_.travel * k.size / surfaceSpeed
+        const double surfaceSpeed =
+            std::max(speed, surfaceRate(k.geometry.corners, b.orientation.conjugate() * b.angularVelocity));
+        double safe = surfaceSpeed > 0 ? settings_.travel * k.size() / surfaceSpeed
                                        : std::numeric_limits<double>::infinity();
         const Vec3& F = wrenches[i].force;
         const Vec3 T = wrenches[i].totalTorque();
@@ -118,11 +168,11 @@ std::optional<std::string> StepAudit::check(long step, double t, double dt, cons
             const double dx = (before[i].position - k.previousPosition).norm();
             if (dx > 0) omega2 = std::max(omega2, (F - k.previousForce).norm() / dx / b.mass());
             const double dtheta = angleBetween(before[i].orientation, k.previousOrientation);
-            const double Imin = k.smallestInertia;
+            const double Imin = k.geometry.smallestInertia;
             if (dtheta > 0 && Imin > 0) omega2 = std::max(omega2, (T - k.previousTorque).norm() / dtheta / Imin);
             if (omega2 > 0) safe = std::min(safe, 2.0 * std::acos(-1.0) / std::sqrt(omega2) / kStepsPerPeriod);
         }
-        safe = std::min(safe, bodyStableDeltaT(b, k.size, k.radius, k.smallestInertia, wrenches[i], settings_.travel));
+        safe = std::min(safe, bodyStableDeltaT(b, k.geometry, wrenches[i], settings_.travel));
         k.havePrevious = true;
         k.previousPosition = before[i].position;
         k.previousOrientation = before[i].orientation;
@@ -137,7 +187,7 @@ std::optional<std::string> StepAudit::check(long step, double t, double dt, cons
                 report(fmt::format("step {} (t = {:.6g} s): body '{}' moved {:.2g} of its smallest dimension "
                                    "({:.3g} m) in one step (speed {:.3g} m/s, spin {:.3g} rad/s); deltaT {} is too "
                                    "large, a safe one is ~{}",
-                                   step, t, b.name, moved, k.size, speed, spin, seconds(dt), seconds(safe)));
+                                   step, t, b.name, moved, k.size(), speed, spin, seconds(dt), seconds(safe)));
             }
         } else if (k.warned && ++k.quietSteps >= kQuietSteps) {
             k.warned = false;
@@ -163,16 +213,18 @@ std::optional<std::string> StepAudit::check(long step, double t, double dt, cons
     return stop;
 }
 
-double StepAudit::stableDeltaT(const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches,
-                               bool implicitTilt) const {
-    double dt = std::numeric_limits<double>::infinity();
+StepProposal StepAudit::stableDeltaT(const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches,
+                                     bool implicitTilt) const {
+    StepProposal p;
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         const Track& k = tracks_[i];
-        if (bodies[i].fixed || k.size <= 0) continue;
-        dt = std::min(dt, bodyStableDeltaT(bodies[i], k.size, k.radius, k.smallestInertia, wrenches[i],
-                                           kProposalTravel * settings_.travel, implicitTilt));
+        if (bodies[i].fixed || k.size() <= 0) continue;
+        const char* limit = "";
+        const double dt =
+            bodyStableDeltaT(bodies[i], k.geometry, wrenches[i], kProposalTravel * settings_.travel, implicitTilt, &limit);
+        if (dt < p.deltaT) p.deltaT = dt, p.body = bodies[i].name, p.limit = limit;
     }
-    return dt;
+    return p;
 }
 
 double StepAudit::energyDrift() const {
@@ -186,7 +238,7 @@ void StepAudit::summary(const std::vector<Body>& bodies) const {
         if (bodies[i].fixed) continue;
         ++dynamic;
         const double surface = std::max(bodies[i].velocity.norm(),
-                                        bodies[i].angularVelocity.norm() * tracks_[i].radius);
+                                        bodies[i].angularVelocity.norm() * tracks_[i].geometry.radius);
         if (surface < kRestSpeed) ++resting;
     }
     spdlog::info("Audit: total energy {:.6g} J at the start, {:.6g} J at the last step, drift {:.3g} of the peak "

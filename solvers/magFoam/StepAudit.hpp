@@ -25,11 +25,33 @@
 #include <magFoam/ControlDict.hpp>
 #include <magFoam/Wrench.hpp>
 
+#include <array>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace mag::solver {
+
+// The adaptive step's proposal and what set it: the body and the criterion
+// ("travel", "turn", "force stiffness", "tilt stiffness"), for the log.
+struct StepProposal {
+    double deltaT = std::numeric_limits<double>::infinity();
+    std::string body;
+    std::string limit;
+};
+
+// What the audit needs of a body's shape, once per run (body frame).
+struct BodyGeometry {
+    explicit BodyGeometry(const Body& body);
+    double size = 0, radius = 0;        // smallest bounding-box edge, bounding radius (m)
+    std::array<Vec3, 8> corners{};      // bounding box about the centre of mass
+    double smallestInertia = 0;         // kg m^2, principal
+    Mat3 inverseInertia = Mat3::Zero(); // body frame
+    // The largest eigenvalue of P I^-1 P, P the projection normal to the
+    // moment: |U| times it is the squared tilt frequency (1 / I_min without a moment).
+    double tiltCompliance(const Vec3& momentBody) const;
+};
 
 class StepAudit {
 public:
@@ -60,7 +82,7 @@ public:
     // force changes on the scale of its size). Infinity when nothing moves or
     // pulls. With implicitTilt (magneticStiffness: implicit, ImplicitTorque.hpp)
     // the tilt term |U| / I_min is left out (the backend integrates it implicitly).
-    double stableDeltaT(const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches,
+    StepProposal stableDeltaT(const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches,
                         bool implicitTilt = false) const;
 
     // What the run saw (tests).
@@ -69,11 +91,12 @@ public:
 
 private:
     struct Track {
-        double size = 0, radius = 0;     // smallest dimension, bounding radius (m)
-        double smallestInertia = 0;      // kg m^2, principal
+        explicit Track(const Body& body) : geometry(body) {}
+        BodyGeometry geometry;
+        double size() const { return geometry.size; }
         bool havePrevious = false;
-        Vec3 previousPosition, previousForce, previousTorque;
-        Quat previousOrientation;
+        Vec3 previousPosition = Vec3::Zero(), previousForce = Vec3::Zero(), previousTorque = Vec3::Zero();
+        Quat previousOrientation = Quat::Identity();
         int quietSteps = 0;
         bool warned = false;
     };

@@ -217,7 +217,7 @@ void RunStatistics::induction(long step, const InductionReport& ind) {
     }
 }
 
-void RunStatistics::progress(double t, long step, double deltaT) {
+void RunStatistics::progress(double t, long step, double deltaT, const std::string& limitedBy) {
     if (seconds<Clock>(lastReport_) <= 5.0) return;
     lastReport_ = Clock::now();
     const double wall = seconds<Clock>(start_), rate = done_ / wall;
@@ -226,7 +226,8 @@ void RunStatistics::progress(double t, long step, double deltaT) {
     if (soft_ && stepsSinceReport_ > 0)
         induction = fmt::format("  induction {:.1f} sweeps/step", double(sweepsSinceReport_) / stepsSinceReport_);
     sweepsSinceReport_ = stepsSinceReport_ = 0;
-    const std::string dt = deltaT > 0 ? fmt::format("  deltaT {:.3g} s", deltaT) : std::string();
+    std::string dt = deltaT > 0 ? fmt::format("  deltaT {:.3g} s", deltaT) : std::string();
+    if (deltaT > 0 && !limitedBy.empty()) dt += " (" + limitedBy + ")";
     spdlog::info("t = {:.6g} s  step {}{}  {:.1f} steps/s  ETA {:.0f} s{}", t, step, dt, rate, eta, induction);
 }
 

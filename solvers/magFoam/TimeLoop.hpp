@@ -70,6 +70,7 @@ public:
     double deltaT() const { return dt_; }     // of the step begun (or the last)
     bool isWriteTime() const { return write_; } // the step just ended is written
     double startTime() const { return startTime_; }
+    double maxDeltaT() const { return maxDt_; }
     double endTime() const { return endTime_; }
     long fixedSteps() const { return lastStep_ - start_; } // fixed steps only
 
@@ -94,7 +95,7 @@ public:
     void induction(long step, const InductionReport& report);
     // Every 5 s: "t = ... s  step ...  steps/s  ETA ... s" (+ the step's
     // length with adaptive steps, + induction sweeps per step).
-    void progress(double t, long step, double deltaT = 0);
+    void progress(double t, long step, double deltaT = 0, const std::string& limitedBy = {});
     // "End: ... steps in ... s; ms per step: ..." and the induction summary.
     void summary() const;
 

@@ -1,0 +1,121 @@
+// The adaptive step's proposal (solvers/magFoam/StepAudit.hpp,
+// docs/dynamics.md#adaptive-time-step) on a thin plate, where the old bounds
+// (spin x bounding radius, torque / smallest inertia) were up to 4x too short.
+// References are closed forms of a box: its corners' distance from an axis,
+// its principal inertias m (b^2 + c^2) / 12.
+#include "bodyFixture.hpp"
+
+#include <StepAudit.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+using namespace mag;
+
+namespace {
+
+// A paperclip-like plate, 33 x 8 x 0.9 mm, magnetized along its length (x).
+const Vec3 kSize(0.033, 0.008, 0.0009);
+
+Body plate(const Quat& orientation = Quat::Identity()) {
+    return magtest::magnet("plate", magtest::boxShape(kSize), Vec3::Zero(), Vec3::UnitX(), orientation);
+}
+
+solver::StepAudit audit(const Body& b) {
+    return solver::StepAudit({b}, AuditSettings{}, 0.0, Vec3::Zero());
+}
+
+// The proposal aims at half the audit's travel (0.1) of the smallest edge.
+constexpr double kTravel = 0.5 * 0.1 * 0.0009;
+
+double principal(const Body& b, double e1, double e2) { return b.mass() * (e1 * e1 + e2 * e2) / 12.0; }
+
+} // namespace
+
+TEST_CASE("step proposal: a spin moves the surface by its distance from the spin axis", "[stepProposal]") {
+    // Turned 30 degrees about z, so that the body and world frames differ.
+    const Quat q = magtest::axisAngle(30, Vec3::UnitZ());
+    Body b = plate(q);
+    const double w = 50.0; // rad/s
+    SECTION("about the long axis: the corners lie sqrt(4^2 + 0.45^2) mm from it") {
+        b.angularVelocity = q * Vec3(w, 0, 0);
+        const auto p = audit(b).stableDeltaT({b}, {Wrench{}});
+        const double r = std::hypot(kSize.y(), kSize.z()) / 2;
+        CHECK(p.deltaT == Approx(kTravel / (w * r)).epsilon(1e-12));
+        CHECK(p.limit == "turn");
+        CHECK(p.body == "plate");
+        // The bounding radius would have made it 4x shorter.
+        CHECK(p.deltaT > 3.5 * kTravel / (w * b.shape->boundingRadius));
+    }
+    SECTION("about the normal: sqrt(16.5^2 + 4^2) mm") {
+        b.angularVelocity = q * Vec3(0, 0, w);
+        const auto p = audit(b).stableDeltaT({b}, {Wrench{}});
+        CHECK(p.deltaT == Approx(kTravel / (w * std::hypot(kSize.x(), kSize.y()) / 2)).epsilon(1e-12));
+    }
+}
+
+TEST_CASE("step proposal: a torque from rest turns the plate by I^-1 tau", "[stepProposal]") {
+    const Quat q = magtest::axisAngle(-70, Vec3(1, 2, 3));
+    Body b = plate(q);
+    Wrench wr;
+    SECTION("about the normal (largest inertia)") {
+        const double tau = 2e-4; // N m
+        wr.torque = q * Vec3(0, 0, tau);
+        const double a = tau / principal(b, kSize.x(), kSize.y()) * std::hypot(kSize.x(), kSize.y()) / 2;
+        // From rest, a dt^2 = travel.
+        const auto p = audit(b).stableDeltaT({b}, {wr});
+        CHECK(p.deltaT == Approx(std::sqrt(kTravel / a)).epsilon(1e-9));
+        CHECK(p.limit == "turn");
+        // tau / I_min would have made it sqrt(I_zz / I_xx) = 4.2x shorter.
+        const double old = std::sqrt(kTravel / (tau / principal(b, kSize.y(), kSize.z()) * b.shape->boundingRadius));
+        CHECK(p.deltaT == Approx(std::sqrt(principal(b, kSize.x(), kSize.y()) / principal(b, kSize.y(), kSize.z())) * old).epsilon(1e-3));
+    }
+    SECTION("about the long axis (smallest inertia)") {
+        const double tau = 1e-6;
+        wr.torque = q * Vec3(tau, 0, 0);
+        const double a = tau / principal(b, kSize.y(), kSize.z()) * std::hypot(kSize.y(), kSize.z()) / 2;
+        const auto p = audit(b).stableDeltaT({b}, {wr});
+        CHECK(p.deltaT == Approx(std::sqrt(kTravel / a)).epsilon(1e-9));
+    }
+}
+
+TEST_CASE("step proposal: tilt stiffness |U| about the axes normal to the moment", "[stepProposal]") {
+    const Quat q = magtest::axisAngle(40, Vec3(0, 1, 1));
+    Body b = plate(q);
+    Wrench wr;
+    wr.energy = -3e-3; // J: the moment aligned in a field, U = -m B
+    const double twoPi = 2 * std::acos(-1.0);
+    // Moment along x: the tilt axes are y and z; y has the smaller inertia
+    // (33 x 0.9 mm against 33 x 8 mm), so the fastest swing is about y.
+    const double omega = std::sqrt(3e-3 / principal(b, kSize.x(), kSize.z()));
+    auto p = audit(b).stableDeltaT({b}, {wr});
+    CHECK(p.deltaT == Approx(twoPi / omega / 20).epsilon(1e-9));
+    CHECK(p.limit == "tilt stiffness");
+    // Moment along y: the tilt axes are x (smallest inertia) and z.
+    b.magnetizationBody = Vec3::UnitY() / mu0;
+    p = audit(b).stableDeltaT({b}, {wr});
+    CHECK(p.deltaT == Approx(twoPi / std::sqrt(3e-3 / principal(b, kSize.y(), kSize.z())) / 20).epsilon(1e-9));
+    // Implicit tilt (magneticStiffness: implicit): the term is left out.
+    p = audit(b).stableDeltaT({b}, {wr}, true);
+    CHECK_FALSE(std::isfinite(p.deltaT));
+}
+
+TEST_CASE("step proposal: free flight and a pull name travel and force stiffness", "[stepProposal]") {
+    Body b = plate();
+    b.velocity = Vec3(0.3, 0, 0);
+    auto p = audit(b).stableDeltaT({b}, {Wrench{}});
+    CHECK(p.deltaT == Approx(kTravel / 0.3).epsilon(1e-12));
+    CHECK(p.limit == "travel");
+    Wrench wr;
+    wr.force = Vec3(0, 0, 5.0); // N: omega^2 = F / (m size) = 5 / (m 0.9 mm)
+    b.velocity = Vec3::Zero();
+    p = audit(b).stableDeltaT({b}, {wr});
+    const double travelStep = std::sqrt(kTravel / (5.0 / b.mass()));
+    const double stiffStep = 2 * std::acos(-1.0) / std::sqrt(5.0 / (b.mass() * 0.0009)) / 20;
+    CHECK(p.deltaT == Approx(std::min(travelStep, stiffStep)).epsilon(1e-9));
+    CHECK(p.limit == (travelStep < stiffStep ? "travel" : "force stiffness"));
+    // Fixed bodies propose nothing.
+    b.fixed = true;
+    CHECK_FALSE(std::isfinite(audit(b).stableDeltaT({b}, {wr}).deltaT));
+}
