@@ -202,9 +202,8 @@ TEST_CASE("restart is exact: ODE, paperclips colliding through their convex piec
     auto setup = [](magtest::TempCase& c) {
         const std::filesystem::path src = std::filesystem::path(MAG_SOURCE_DIR) / "cases/fig8-paperclips";
         for (const char* f : {"system/magSchemes.yaml", "constant/materials.yaml", "system/geometryDict.yaml",
-                              "constant/rigidBody.pieces.yaml"})
+                              "constant/rigidBody.yaml"})
             c.write(f, slurp(src / f));
-        c.write("constant/rigidBody.yaml", slurp(c.path("constant/rigidBody.pieces.yaml")));
         REQUIRE(magtest::runApp(c.dir(), "magMakeGeometry", "log.geo") == 0);
         REQUIRE(std::filesystem::exists(c.path("constant/geometry/paperclip.pieces.yaml")));
         c.write("constant/bodies.yaml",
