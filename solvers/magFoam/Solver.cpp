@@ -181,6 +181,7 @@ void run(Case& c, const RunOptions& options) {
         }
         const double dt = loop.begin(proposal);
         if (loop.adaptive() && dt < proposal) limitedBy = dt >= loop.maxDeltaT() ? "maxDeltaT" : "write time";
+        if (loop.adaptive() && dt > proposal) limitedBy = "minDeltaT";
         const double t = loop.endOfStep();
         if (soft) writer.writeInduction(t, step, magnetic.induction);
         stats.induction(step, magnetic.induction);
