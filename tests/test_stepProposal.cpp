@@ -44,7 +44,7 @@ TEST_CASE("step proposal: a spin moves the surface by its distance from the spin
         const double r = std::hypot(kSize.y(), kSize.z()) / 2;
         CHECK(p.deltaT == Approx(kTravel / (w * r)).epsilon(1e-12));
         CHECK(p.limit == "turn");
-        CHECK(p.body == "plate");
+        CHECK(p.body == 0);
         // The bounding radius would have made it 4x shorter.
         CHECK(p.deltaT > 3.5 * kTravel / (w * b.shape->boundingRadius));
     }

@@ -171,17 +171,20 @@ void run(Case& c, const RunOptions& options) {
         // The step's length: fixed, or what the motion and stiffness of the
         // awake bodies allow now.
         double proposal = 0.0;
-        std::string limitedBy; // for the progress line
+        std::string_view limitedBy, limitingBody; // what set the step, for the progress line
         if (loop.adaptive()) {
             const StepProposal stable =
                 sleeping.anyAsleep() ? audit.stableDeltaT(sleeping.awakeView(bodies), wrenches, control.implicitTorque)
                                      : audit.stableDeltaT(bodies, wrenches, control.implicitTorque);
             proposal = std::min(kMaxGrowth * lastDeltaT, stable.deltaT);
-            limitedBy = stable.deltaT <= proposal ? stable.body + ": " + stable.limit : "growth";
+            if (stable.deltaT > proposal) limitedBy = "growth";
+            else limitedBy = stable.limit, limitingBody = bodies[stable.body].name;
         }
         const double dt = loop.begin(proposal);
-        if (loop.adaptive() && dt < proposal) limitedBy = dt >= loop.maxDeltaT() ? "maxDeltaT" : "write time";
-        if (loop.adaptive() && dt > proposal) limitedBy = "minDeltaT";
+        if (loop.adaptive() && dt != proposal) {
+            limitingBody = {};
+            limitedBy = dt > proposal ? "minDeltaT" : dt >= loop.maxDeltaT() ? "maxDeltaT" : "write time";
+        }
         const double t = loop.endOfStep();
         if (soft) writer.writeInduction(t, step, magnetic.induction);
         stats.induction(step, magnetic.induction);
@@ -222,7 +225,7 @@ void run(Case& c, const RunOptions& options) {
             spdlog::info("Stopped by signal at t = {}; state written to {}/", t, timeName(t));
             break;
         }
-        stats.progress(t, step, loop.adaptive() ? dt : 0.0, limitedBy);
+        stats.progress(t, step, loop.adaptive() ? dt : 0.0, limitedBy, limitingBody);
     }
     stats.summary();
     audit.summary(bodies);

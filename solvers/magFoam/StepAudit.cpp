@@ -60,7 +60,7 @@ double bodyStableDeltaT(const Body& b, const BodyGeometry& g, const Wrench& w, d
     const Vec3 spin = toBody * b.angularVelocity;
     const Vec3 alpha = g.inverseInertia * (toBody * w.totalTorque());
     take(within(surfaceRate(g.corners, spin), surfaceRate(g.corners, alpha)), "turn");
-    const double twoPi = 2.0 * std::acos(-1.0);
+    const double twoPi = 2.0 * pi;
     const double forceOmega2 = w.force.norm() / (b.mass() * g.size);
     if (forceOmega2 > 0) take(twoPi / std::sqrt(forceOmega2) / kStepsPerPeriod, "force stiffness");
     if (!implicitTilt) {
@@ -87,7 +87,6 @@ BodyGeometry::BodyGeometry(const Body& body) {
     }
     if (m.vertices.empty()) lo = hi = Vec3::Zero();
     size = (hi - lo).minCoeff();
-    radius = body.shape->boundingRadius;
     for (int c = 0; c < 8; ++c)
         corners[c] = Vec3(c & 1 ? hi.x() : lo.x(), c & 2 ? hi.y() : lo.y(), c & 4 ? hi.z() : lo.z());
     const Mat3 I = body.inertiaBody();
@@ -145,7 +144,7 @@ std::optional<std::string> StepAudit::check(long step, double t, double dt, cons
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         const Body& b = bodies[i];
         Track& k = tracks_[i];
-        if (b.fixed || k.size() <= 0) continue;
+        if (b.fixed || k.geometry.size <= 0) continue;
         const double speed = b.velocity.norm(), spin = b.angularVelocity.norm();
         if (speed > maxSpeed_) maxSpeed_ = speed, fastest_ = b.name;
         const double travel = (b.position - before[i].position).norm();
@@ -153,14 +152,12 @@ std::optional<std::string> StepAudit::check(long step, double t, double dt, cons
         double arc = 0;
         for (const Vec3& c : k.geometry.corners)
             arc = std::max(arc, (b.orientation * c - before[i].orientation * c).norm());
-        const double moved = std::max(travel, arc) / k.size();
+        const double moved = std::max(travel, arc) / k.geometry.size;
 
-        // Safe step: the motion criterion, and 1/20 of the magnetic oscillation's
-        // period from the stiffness between the last two steps' starts.
-        const double surfaceSpeed =
-            std::max(speed, surfaceRate(k.geometry.corners, b.orientation.conjugate() * b.angularVelocity));
-        double safe = surfaceSpeed > 0 ? settings_.travel * k.size() / surfaceSpeed
-                                       : std::numeric_limits<double>::infinity();
+        // Safe step: the proposal's criteria at the full travel, and 1/20 of
+        // the magnetic oscillation's period from the stiffness between the last
+        // two steps' starts.
+        double safe = bodyStableDeltaT(b, k.geometry, wrenches[i], settings_.travel);
         const Vec3& F = wrenches[i].force;
         const Vec3 T = wrenches[i].totalTorque();
         if (k.havePrevious) {
@@ -168,11 +165,11 @@ std::optional<std::string> StepAudit::check(long step, double t, double dt, cons
             const double dx = (before[i].position - k.previousPosition).norm();
             if (dx > 0) omega2 = std::max(omega2, (F - k.previousForce).norm() / dx / b.mass());
             const double dtheta = angleBetween(before[i].orientation, k.previousOrientation);
-            const double Imin = k.geometry.smallestInertia;
-            if (dtheta > 0 && Imin > 0) omega2 = std::max(omega2, (T - k.previousTorque).norm() / dtheta / Imin);
-            if (omega2 > 0) safe = std::min(safe, 2.0 * std::acos(-1.0) / std::sqrt(omega2) / kStepsPerPeriod);
+            if (dtheta > 0)
+                omega2 = std::max(omega2, (k.geometry.inverseInertia * (b.orientation.conjugate() * (T - k.previousTorque)))
+                                              .norm() / dtheta);
+            if (omega2 > 0) safe = std::min(safe, 2.0 * pi / std::sqrt(omega2) / kStepsPerPeriod);
         }
-        safe = std::min(safe, bodyStableDeltaT(b, k.geometry, wrenches[i], settings_.travel));
         k.havePrevious = true;
         k.previousPosition = before[i].position;
         k.previousOrientation = before[i].orientation;
@@ -187,7 +184,7 @@ std::optional<std::string> StepAudit::check(long step, double t, double dt, cons
                 report(fmt::format("step {} (t = {:.6g} s): body '{}' moved {:.2g} of its smallest dimension "
                                    "({:.3g} m) in one step (speed {:.3g} m/s, spin {:.3g} rad/s); deltaT {} is too "
                                    "large, a safe one is ~{}",
-                                   step, t, b.name, moved, k.size(), speed, spin, seconds(dt), seconds(safe)));
+                                   step, t, b.name, moved, k.geometry.size, speed, spin, seconds(dt), seconds(safe)));
             }
         } else if (k.warned && ++k.quietSteps >= kQuietSteps) {
             k.warned = false;
@@ -218,11 +215,11 @@ StepProposal StepAudit::stableDeltaT(const std::vector<Body>& bodies, const std:
     StepProposal p;
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         const Track& k = tracks_[i];
-        if (bodies[i].fixed || k.size() <= 0) continue;
+        if (bodies[i].fixed || k.geometry.size <= 0) continue;
         const char* limit = "";
         const double dt =
             bodyStableDeltaT(bodies[i], k.geometry, wrenches[i], kProposalTravel * settings_.travel, implicitTilt, &limit);
-        if (dt < p.deltaT) p.deltaT = dt, p.body = bodies[i].name, p.limit = limit;
+        if (dt < p.deltaT) p.deltaT = dt, p.body = i, p.limit = limit;
     }
     return p;
 }
@@ -237,8 +234,9 @@ void StepAudit::summary(const std::vector<Body>& bodies) const {
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         if (bodies[i].fixed) continue;
         ++dynamic;
-        const double surface = std::max(bodies[i].velocity.norm(),
-                                        bodies[i].angularVelocity.norm() * tracks_[i].geometry.radius);
+        const double surface =
+            std::max(bodies[i].velocity.norm(),
+                     surfaceRate(tracks_[i].geometry.corners, bodies[i].orientation.conjugate() * bodies[i].angularVelocity));
         if (surface < kRestSpeed) ++resting;
     }
     spdlog::info("Audit: total energy {:.6g} J at the start, {:.6g} J at the last step, drift {:.3g} of the peak "

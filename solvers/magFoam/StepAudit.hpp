@@ -7,14 +7,15 @@
 //   warns when the total rises above its start by more than
 //   energyRise x (the peak kinetic energy so far) plus what the field's
 //   tolerance allows (10 x tolerance x |magnetic energy|);
-// - motion: each dynamic body's travel in the step, and the arc its surface
-//   turns through (angle x bounding radius), against its smallest dimension
-//   (the smallest edge of its body-frame bounding box); it warns above
-//   `travel`.
+// - motion: each dynamic body's travel in the step, and the farthest its
+//   surface moves by the step's turn (a corner of its body-frame bounding
+//   box), against its smallest dimension (the smallest edge of that box); it
+//   warns above `travel`.
 // Each warning names the body, the step and a time step that would be safe:
-// the smaller of travel x size / speed and 1/20 of the period of the magnetic
-// oscillation, from the stiffness the last two steps show (change of force
-// over change of position, of torque over change of angle). Once per episode:
+// the smaller of stableDeltaT's criteria at the full `travel` and 1/20 of the
+// period of the magnetic oscillation from the stiffness the last two steps
+// show (change of force over change of position, of I^-1 torque over change
+// of angle). Once per episode:
 // a condition must stay clear for 100 steps before it warns again. With
 // `strict` (controlDict audit.strict, magFoam -strict) check() returns the
 // message as a stop instead. summary() logs the run's energy drift, its
@@ -29,22 +30,24 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace mag::solver {
 
-// The adaptive step's proposal and what set it: the body and the criterion
-// ("travel", "turn", "force stiffness", "tilt stiffness"), for the log.
+// The adaptive step's proposal and what set it, for the log: the body (its
+// index; none when nothing proposes) and the criterion ("travel", "turn",
+// "force stiffness", "tilt stiffness").
 struct StepProposal {
     double deltaT = std::numeric_limits<double>::infinity();
-    std::string body;
-    std::string limit;
+    std::size_t body = static_cast<std::size_t>(-1);
+    std::string_view limit;
 };
 
 // What the audit needs of a body's shape, once per run (body frame).
 struct BodyGeometry {
     explicit BodyGeometry(const Body& body);
-    double size = 0, radius = 0;        // smallest bounding-box edge, bounding radius (m)
+    double size = 0;                    // smallest bounding-box edge (m)
     std::array<Vec3, 8> corners{};      // bounding box about the centre of mass
     double smallestInertia = 0;         // kg m^2, principal
     Mat3 inverseInertia = Mat3::Zero(); // body frame
@@ -74,16 +77,18 @@ public:
     // A step that resolves every dynamic body's motion and magnetic
     // oscillation in the state of `bodies` under `wrenches` (the adaptive
     // step's proposal, docs/dynamics.md#adaptive-time-step): per body the
-    // smaller of the step in which the centre or the surface would travel
-    // travel / 2 x size (v dt + a dt^2, semi-implicit Euler, from the velocities and the magnetic
-    // force and torque; gravity and contacts are not counted) and 1/20 of 2 pi / omega, with
-    // omega^2 = max(|U| / I_min, |F| / (m size)) from the body's magnetic
-    // energy U and force F (a magnet's tilt stiffness in a field is |U|; its
+    // smaller of the step in which the centre or the surface (its bounding
+    // box's corners) would travel travel / 2 x size (v dt + a dt^2,
+    // semi-implicit Euler, from the velocities, the magnetic force and
+    // I^-1 torque; gravity and contacts are not counted) and 1/20 of
+    // 2 pi / omega, with omega^2 = max(|U| lambda, |F| / (m size)) from the
+    // body's magnetic energy U and force F (a moment tilts with stiffness |U|
+    // about the axes normal to it, lambda = BodyGeometry::tiltCompliance; its
     // force changes on the scale of its size). Infinity when nothing moves or
     // pulls. With implicitTilt (magneticStiffness: implicit, ImplicitTorque.hpp)
-    // the tilt term |U| / I_min is left out (the backend integrates it implicitly).
+    // the tilt term is left out (the backend integrates it implicitly).
     StepProposal stableDeltaT(const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches,
-                        bool implicitTilt = false) const;
+                              bool implicitTilt = false) const;
 
     // What the run saw (tests).
     int warnings() const { return warnings_; }
@@ -93,7 +98,6 @@ private:
     struct Track {
         explicit Track(const Body& body) : geometry(body) {}
         BodyGeometry geometry;
-        double size() const { return geometry.size; }
         bool havePrevious = false;
         Vec3 previousPosition = Vec3::Zero(), previousForce = Vec3::Zero(), previousTorque = Vec3::Zero();
         Quat previousOrientation = Quat::Identity();

@@ -217,7 +217,8 @@ void RunStatistics::induction(long step, const InductionReport& ind) {
     }
 }
 
-void RunStatistics::progress(double t, long step, double deltaT, const std::string& limitedBy) {
+void RunStatistics::progress(double t, long step, double deltaT, std::string_view limitedBy,
+                             std::string_view body) {
     if (seconds<Clock>(lastReport_) <= 5.0) return;
     lastReport_ = Clock::now();
     const double wall = seconds<Clock>(start_), rate = done_ / wall;
@@ -227,7 +228,8 @@ void RunStatistics::progress(double t, long step, double deltaT, const std::stri
         induction = fmt::format("  induction {:.1f} sweeps/step", double(sweepsSinceReport_) / stepsSinceReport_);
     sweepsSinceReport_ = stepsSinceReport_ = 0;
     std::string dt = deltaT > 0 ? fmt::format("  deltaT {:.3g} s", deltaT) : std::string();
-    if (deltaT > 0 && !limitedBy.empty()) dt += " (" + limitedBy + ")";
+    if (deltaT > 0 && !limitedBy.empty())
+        dt += body.empty() ? fmt::format(" ({})", limitedBy) : fmt::format(" ({}: {})", body, limitedBy);
     spdlog::info("t = {:.6g} s  step {}{}  {:.1f} steps/s  ETA {:.0f} s{}", t, step, dt, rate, eta, induction);
 }
 

@@ -20,6 +20,7 @@
 #include <chrono>
 #include <filesystem>
 #include <optional>
+#include <string_view>
 #include <vector>
 
 namespace mag::solver {
@@ -94,8 +95,10 @@ public:
     // A step's induction report: summed for the log; warns when unconverged.
     void induction(long step, const InductionReport& report);
     // Every 5 s: "t = ... s  step ...  steps/s  ETA ... s" (+ the step's
-    // length with adaptive steps, + induction sweeps per step).
-    void progress(double t, long step, double deltaT = 0, const std::string& limitedBy = {});
+    // length with adaptive steps and what set it, "(body: criterion)" or
+    // "(growth)" etc., + induction sweeps per step).
+    void progress(double t, long step, double deltaT = 0, std::string_view limitedBy = {},
+                  std::string_view body = {});
     // "End: ... steps in ... s; ms per step: ..." and the induction summary.
     void summary() const;
 
