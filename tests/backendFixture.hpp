@@ -158,6 +158,47 @@ inline Stack stack(const std::string& yaml, Body top, double dt, double tilt, do
     return s;
 }
 
+// Two 1 cm cubes pressed together by +-30 N, as a magnet pair pulls, with a
+// 5 N shear along their contact that friction holds, and on each half of the
+// torque that cancels the forces' couple (so each cube is in balance with
+// its contact's friction): no external force or angular impulse. Returns the
+// largest |L| of the pair (about the origin, N m s) over 0.05 s; it starts
+// at zero. With a ground in `yaml` the pair rests on it instead, pressed
+// along x only, and both cubes are pushed sideways by `push` (N).
+struct PressedPair {
+    double angularMomentum = 0; // max |L|, N m s
+    double speed = 0;           // fastest cube at the end, m/s
+    double drift = 0;           // sideways travel of the pair's centre over the last 0.04 s, m
+    std::string describe;
+};
+inline PressedPair pressedPair(const std::string& yaml, double push = 0) {
+    auto rb = backend(yaml);
+    std::vector<Body> bodies = {cube("a", 0.01), cube("b", 0.01)};
+    const bool onGround = yaml.find("ground") != std::string::npos;
+    const double z = onGround ? 0.005 - 5e-7 : 0; // resting inside the 1 um layer
+    bodies[0].position = Vec3(-0.005, 0, z);
+    bodies[1].position = Vec3(0.005 - 2e-6, 0, z);
+    rb->setup(bodies);
+    const Vec3 pull = onGround ? Vec3(30, 0, 0) : Vec3(30, 4, 3);
+    Vec3 centre0 = Vec3::Zero();
+    PressedPair out;
+    std::vector<Wrench> w(2);
+    for (int n = 0; n < 500; ++n) {
+        w[0].force = pull + Vec3(0, push, 0), w[1].force = -pull + Vec3(0, push, 0);
+        w[0].torque = w[1].torque = -0.5 * (bodies[0].position - bodies[1].position).cross(pull);
+        rb->step(bodies, w, 1e-4);
+        if (n == 99) centre0 = 0.5 * (bodies[0].position + bodies[1].position); // after the first contact's settling
+        Vec3 L = Vec3::Zero();
+        for (const Body& b : bodies) L += b.inertiaWorld() * b.angularVelocity + b.position.cross(b.mass() * b.velocity);
+        out.angularMomentum = std::max(out.angularMomentum, L.norm());
+    }
+    for (const Body& b : bodies) out.speed = std::max(out.speed, b.velocity.norm());
+    const Vec3 centre = 0.5 * (bodies[0].position + bodies[1].position);
+    out.drift = std::hypot(centre.x() - centre0.x(), centre.y() - centre0.y());
+    out.describe = rb->describe();
+    return out;
+}
+
 // A cube in free flight under a constant wrench and gravity, from a moving,
 // spinning start: a semi-implicit Euler step (v += a h, x += v h) gives after
 // N steps x = x0 + v0 T + a h^2 N (N + 1) / 2 (the parabola plus a T h / 2),

@@ -72,6 +72,54 @@ Mat3 eig(const btMatrix3x3& m) {
     return r;
 }
 
+// Bullet applies a contact's impulse to A at the contact's point on A and to
+// B at its point on B. The two lie the penetration depth apart, so each
+// friction impulse also turns the pair by (depth x impulse): two magnets
+// pressed together by 30 N spun up as a pair from rest, with no torque on
+// them. Here both bodies take each impulse at the points' midpoint (ODE has
+// one contact position), set before every solve (docs/rigid-bodies.md#bullet).
+class MidpointContactWorld final : public btDiscreteDynamicsWorld {
+public:
+    using btDiscreteDynamicsWorld::btDiscreteDynamicsWorld;
+    void solveConstraints(btContactSolverInfo& info) override {
+        btDispatcher* d = getDispatcher();
+        for (int k = 0; k < d->getNumManifolds(); ++k) {
+            btPersistentManifold* m = d->getManifoldByIndexInternal(k);
+            for (int c = 0; c < m->getNumContacts(); ++c) {
+                btManifoldPoint& p = m->getContactPoint(c);
+                p.m_positionWorldOnA = p.m_positionWorldOnB = 0.5 * (p.m_positionWorldOnA + p.m_positionWorldOnB);
+            }
+        }
+        btDiscreteDynamicsWorld::solveConstraints(info);
+    }
+};
+
+// Bullet's sequential-impulse solver sets up a contact's normal row with the
+// velocity the step's external force and torque add, but its friction rows
+// with the force's share only: a torque's slip was invisible to friction,
+// so a magnet's torque turned it on a face friction should have held (two
+// cubes pressed together, each turned by 0.025 N m against 15 N of
+// friction, spun up at 12 rad/s per 0.1 ms). The friction rows get the
+// torque's share here, after Bullet's setup.
+class TorqueAwareSolver final : public btSequentialImpulseConstraintSolver {
+protected:
+    btScalar solveGroupCacheFriendlySetup(btCollisionObject** bodies, int numBodies, btPersistentManifold** manifolds,
+                                          int numManifolds, btTypedConstraint** constraints, int numConstraints,
+                                          const btContactSolverInfo& info, btIDebugDraw* debug) override {
+        const btScalar result = btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup(
+            bodies, numBodies, manifolds, numManifolds, constraints, numConstraints, info, debug);
+        for (int k = 0; k < m_tmpSolverContactFrictionConstraintPool.size(); ++k) {
+            btSolverConstraint& c = m_tmpSolverContactFrictionConstraintPool[k];
+            const btSolverBody& a = m_tmpSolverBodyPool[c.m_solverBodyIdA];
+            const btSolverBody& b = m_tmpSolverBodyPool[c.m_solverBodyIdB];
+            const btScalar slip = c.m_relpos1CrossNormal.dot(a.m_externalTorqueImpulse) +
+                                  c.m_relpos2CrossNormal.dot(b.m_externalTorqueImpulse);
+            c.m_rhs -= slip * c.m_jacDiagABInv;
+        }
+        return result;
+    }
+};
+
 // A Bullet shape and what it keeps alive (triangle arrays, children).
 struct ShapeHolder {
     std::unique_ptr<btCollisionShape> shape;
@@ -130,9 +178,9 @@ public:
         // sub-step, so contacts are processed in an order that has no history.
         pairCache_ = std::make_unique<btSortedOverlappingPairCache>();
         broadphase_ = std::make_unique<btDbvtBroadphase>(pairCache_.get());
-        solver_ = std::make_unique<btSequentialImpulseConstraintSolver>();
-        world_ = std::make_unique<btDiscreteDynamicsWorld>(dispatcher_.get(), broadphase_.get(), solver_.get(),
-                                                           config_.get());
+        solver_ = std::make_unique<TorqueAwareSolver>();
+        world_ = std::make_unique<MidpointContactWorld>(dispatcher_.get(), broadphase_.get(), solver_.get(),
+                                                        config_.get());
         world_->setGravity(bt(s_.gravity));
         btContactSolverInfo& info = world_->getSolverInfo();
         info.m_numIterations = iterations_;
@@ -145,6 +193,12 @@ public:
         // zero, the corners drop in and out and the body rocks).
         info.m_linearSlop = s_.surfaceLayer;
         if (!persistent_) info.m_solverMode &= ~SOLVER_USE_WARMSTARTING;
+        // Friction in both tangent directions. Bullet's default has one, along
+        // the contact's sliding velocity before the solve; where a magnet's
+        // pull sets that velocity (two magnets pressed together on the
+        // ground: along their axis), nothing held them across it and the
+        // pair crept sideways without end.
+        info.m_solverMode |= SOLVER_USE_2_FRICTION_DIRECTIONS;
 
         if (s_.groundHeight) {
             groundShape_ = std::make_unique<btStaticPlaneShape>(btVector3(0, 0, 1), *s_.groundHeight);
@@ -536,7 +590,7 @@ private:
     std::unique_ptr<btSortedOverlappingPairCache> pairCache_;
     std::unique_ptr<btDbvtBroadphase> broadphase_;
     std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;
-    std::unique_ptr<btDiscreteDynamicsWorld> world_;
+    std::unique_ptr<MidpointContactWorld> world_;
     std::unique_ptr<btCollisionShape> groundShape_;
     std::unique_ptr<btRigidBody> ground_;
     std::map<std::pair<const void*, bool>, std::unique_ptr<ShapeHolder>> shapes_;
