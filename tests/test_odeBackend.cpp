@@ -77,17 +77,7 @@ TEST_CASE("ODE: bodies dropped on the ground come to rest on it without gaining 
 }
 
 TEST_CASE("ODE: a pair pressed together keeps zero angular momentum and rests on the ground", "[odeBackend]") {
-    SECTION("in free space: contact impulses add no angular momentum") {
-        const PressedPair p = pressedPair("type: ODE\ngravity: [0, 0, 0]\n");
-        INFO("max |L| " << p.angularMomentum << " N m s\n" << p.describe);
-        CHECK(p.angularMomentum < 1e-14); // round-off of 500 steps
-    }
-    SECTION("on the ground, pushed sideways by less than friction holds") {
-        const PressedPair p = pressedPair("type: ODE\ngravity: [0, 0, -9.81]\nground: {height: 0}\n", 0.02);
-        INFO("speed " << p.speed << " m/s, drift " << p.drift << " m\n" << p.describe);
-        CHECK(p.speed < 1e-4);
-        CHECK(p.drift < 1e-6);
-    }
+    checkPressedPair("ODE");
 }
 
 TEST_CASE("ODE: fixed bodies never move", "[odeBackend]") {

@@ -6,7 +6,7 @@
 // (tutorials/magnetChain): four cube magnets that fall into a chain on the
 // ground glided on at 1.9 cm/s for ever with ODE's own bound (findex).
 #include "backendFixture.hpp"
-#include "caseFixture.hpp"
+#include "magnetChainFixture.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -98,25 +98,11 @@ TEST_CASE("ODE friction: four magnets that fall into a chain come to rest on the
     // ground. With ODE's own bound (findex) the chain's ground contacts get
     // no friction and it glides on at a constant 1.9 cm/s.
     auto run = [](const std::string& bound) {
-        magtest::TempCase c;
-        const std::filesystem::path tutorial = std::filesystem::path(MAG_SOURCE_DIR) / "tutorials/magnetChain";
-        for (const char* dir : {"constant", "system"})
-            std::filesystem::copy(tutorial / dir, c.path(dir), std::filesystem::copy_options::recursive |
-                                                                   std::filesystem::copy_options::overwrite_existing);
-        std::string control = magtest::slurp(c.path("system/controlDict.yaml"));
-        control = std::regex_replace(control, std::regex("endTime: 1\\n"), "endTime: 0.8\n");
-        c.write("system/controlDict.yaml", control);
-        std::string rigid = magtest::slurp(c.path("constant/rigidBody.yaml"));
-        rigid = std::regex_replace(rigid, std::regex("restitution: 0.1\\}"),
-                                   "restitution: 0.1, frictionBound: " + bound + "}");
-        REQUIRE(rigid.find("frictionBound: " + bound) != std::string::npos);
-        c.write("constant/rigidBody.yaml", rigid);
-        REQUIRE(magtest::runApp(c.dir(), "magFoam", "log") == 0);
-        const std::string log = magtest::slurp(c.dir() / "log");
-        REQUIRE(log.find("from t = 0 to 0.8") != std::string::npos);
-        std::smatch m;
-        REQUIRE(std::regex_search(log, m, std::regex("([0-9]+) of 4 dynamic bodies at rest at the end")));
-        return std::stoi(m[1]);
+        return magtest::magnetChainAtRest([&](std::string&, std::string& rigid) {
+            rigid = std::regex_replace(rigid, std::regex("restitution: 0.1\\}"),
+                                       "restitution: 0.1, frictionBound: " + bound + "}");
+            REQUIRE(rigid.find("frictionBound: " + bound) != std::string::npos);
+        });
     };
     CHECK(run("normalForce") == 4);
     // The fault, kept reproducible: if ODE ever bounds these rows itself,
