@@ -154,7 +154,7 @@ public:
         // ground by millinewtons need many sweeps of the sequential solver
         // before friction holds them (Fig. 7: at rest with 300, asleep with
         // 1000; never with 50, Bullet's usual count; docs/rigid-bodies.md#bullet).
-        iterations_ = d.get<int>("solverIterations", 1000);
+        iterations_ = d.get<int>("solverIterations", iterations_);
         if (iterations_ < 1 || iterations_ > 10000) d.fail("solverIterations", "solverIterations must be 1..10000");
         const std::string shapes = d.getWord("collisionShapes", {"auto", "trimesh", "mesh"}, "auto");
         meshOnly_ = shapes == "mesh", usePieces_ = shapes == "auto";
@@ -585,7 +585,7 @@ private:
     ContactSettings s_;
     double margin_ = 1e-5, stiffness_ = 0, damping_ = 0, breakingShare_ = 0.1, breakingThreshold_ = 0.02;
     double splitThreshold_ = -1e-5, ccdThreshold_ = 0.5, ccdRadius_ = 0.25;
-    int iterations_ = 1000;
+    int iterations_ = 1000; // solverIterations' default (see the constructor)
     bool splitImpulse_ = true, persistent_ = false, meshOnly_ = false, usePieces_ = true;
 
     // Bullet objects (destroyed in reverse order of creation).
