@@ -166,6 +166,10 @@ TEST_CASE("Bullet: a pair pressed together keeps zero angular momentum and rests
     checkPressedPair("Bullet");
 }
 
+TEST_CASE("Bullet: a bar pressed onto a convex block holds a torque", "[bulletBackend]") {
+    checkBarOnBlock("Bullet");
+}
+
 TEST_CASE("Bullet: four magnets that fall into a chain come to rest on the ground", "[bulletBackend]") {
     // tutorials/magnetChain on Bullet, the tilt swing explicit (Bullet does
     // not take the implicit one).

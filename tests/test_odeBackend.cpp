@@ -80,6 +80,10 @@ TEST_CASE("ODE: a pair pressed together keeps zero angular momentum and rests on
     checkPressedPair("ODE");
 }
 
+TEST_CASE("ODE: a bar pressed onto a convex block holds a torque", "[odeBackend]") {
+    checkBarOnBlock("ODE");
+}
+
 TEST_CASE("ODE: fixed bodies never move", "[odeBackend]") {
     auto rb = backend("type: ODE\ngravity: [0, 0, -9.81]\n");
     std::vector<Body> bodies = {cube("base", 0.01), cube("hammer", 0.01)};

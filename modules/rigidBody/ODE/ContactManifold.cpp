@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <utility>
 
 namespace mag::ode {
 
@@ -196,6 +197,92 @@ void reduceContacts(std::vector<ContactPoint>& contacts, int maxContacts, double
         next = best;
     }
     contacts = std::move(out);
+}
+
+namespace {
+
+// The face of a placed polytope whose outward normal is most aligned with u:
+// its index and the cosine.
+std::pair<int, double> mostAlignedFace(const PolytopeView& g, const Vec3& u) {
+    const Vec3 ub = g.rotation.transpose() * u;
+    int best = -1;
+    double cosine = -kInfinity;
+    for (int f = 0; f < static_cast<int>(g.hull->normals.size()); ++f) {
+        const double c = g.hull->normals[f].dot(ub);
+        if (c > cosine) cosine = c, best = f;
+    }
+    return {best, cosine};
+}
+
+std::vector<Vec3> facePolygon(const PolytopeView& g, int f) {
+    std::vector<Vec3> out;
+    for (int v : g.hull->faces[f]) out.push_back(g.position + g.rotation * g.hull->points[v]);
+    return out;
+}
+
+// The part of `polygon` with (x - origin) . normal <= 0.
+void clipToHalfSpace(std::vector<Vec3>& polygon, const Vec3& origin, const Vec3& normal, std::vector<Vec3>& scratch) {
+    scratch.clear();
+    const std::size_t n = polygon.size();
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec3& a = polygon[i];
+        const Vec3& b = polygon[(i + 1) % n];
+        const double da = (a - origin).dot(normal), db = (b - origin).dot(normal);
+        if (da <= 0) scratch.push_back(a);
+        if ((da < 0 && db > 0) || (da > 0 && db < 0)) scratch.push_back(a + (b - a) * (da / (da - db)));
+    }
+    polygon.swap(scratch);
+}
+
+} // namespace
+
+bool clipFaceContacts(const PolytopeView& g1, const PolytopeView& g2, const ContactPoint& seed, double slack,
+                      std::vector<ContactPoint>& out) {
+    // Moving geom 1 along the normal separates: geom 1 touches with a face
+    // facing -normal, geom 2 with one facing +normal.
+    const Vec3 n = seed.normal.normalized();
+    const auto [f1, c1] = mostAlignedFace(g1, -n);
+    const auto [f2, c2] = mostAlignedFace(g2, n);
+    // cos 10 degrees: an EPA normal of a face contact is that face's normal
+    // to round-off; between two faces' normals lies an edge or a corner.
+    const double cosFace = 0.985;
+    if (f1 < 0 || f2 < 0 || std::max(c1, c2) < cosFace) return false;
+    const bool refIsG2 = c2 >= c1;
+    const PolytopeView& ref = refIsG2 ? g2 : g1;
+    const PolytopeView& inc = refIsG2 ? g1 : g2;
+    const int fr = refIsG2 ? f2 : f1;
+    const Vec3 nr = ref.rotation * ref.hull->normals[fr];
+    const std::vector<Vec3> refFace = facePolygon(ref, fr);
+    const Vec3 origin = refFace.front();
+    const int fi = mostAlignedFace(inc, -nr).first;
+    std::vector<Vec3> polygon = facePolygon(inc, fi), scratch;
+    // Side planes of the reference face, outward (its loop is counter-
+    // clockwise seen from outside, so edge x normal points out of the face).
+    for (std::size_t i = 0; i < refFace.size() && !polygon.empty(); ++i) {
+        const Vec3& a = refFace[i];
+        const Vec3& b = refFace[(i + 1) % refFace.size()];
+        const Vec3 side = (b - a).cross(nr);
+        if (side.squaredNorm() == 0) continue;
+        clipToHalfSpace(polygon, a, side.normalized(), scratch);
+    }
+    std::vector<ContactPoint> clipped;
+    double deepest = -kInfinity;
+    for (const Vec3& q : polygon) {
+        const double height = (q - origin).dot(nr); // < 0: behind the reference face
+        if (height > slack) continue;
+        ContactPoint c;
+        c.normal = refIsG2 ? nr : Vec3(-nr);
+        c.position = q - 0.5 * height * nr;
+        c.depth = -height;
+        c.source = seed.source;
+        deepest = std::max(deepest, c.depth);
+        clipped.push_back(c);
+    }
+    // libccd's depth is the least separating translation, so no face point
+    // lies much deeper; if one does, the faces are not the contact's.
+    if (clipped.empty() || deepest > 1.5 * std::max(seed.depth, 0.0) + slack) return false;
+    out.insert(out.end(), clipped.begin(), clipped.end());
+    return true;
 }
 
 } // namespace mag::ode

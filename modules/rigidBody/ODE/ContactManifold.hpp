@@ -42,6 +42,7 @@
 //    face, and every face of a concave contact.
 #pragma once
 
+#include <magFoam/ConvexPieces.hpp>
 #include <magFoam/SurfaceMesh.hpp>
 #include <magFoam/Types.hpp>
 
@@ -103,5 +104,30 @@ int mergeContacts(std::vector<ContactPoint>& contacts, double distance);
 // length, the pair's size), so that a box in a concave corner keeps contacts
 // on both walls, also where they meet.
 void reduceContacts(std::vector<ContactPoint>& contacts, int maxContacts, double normalWeight);
+
+// Face contacts of two convex polytopes (dConvex hulls, boxes) from one
+// contact. ODE 0.16 collides convex geoms through libccd, which returns ONE
+// point per pair (its penetration depth, normal and a point between the
+// shapes): a rod lying on a convex piece of a magnet is held at one point
+// only, so any torque that presses one end harder turns it about that point
+// and the other end goes into the magnet (docs/rigid-bodies.md#convex-pieces).
+// From that contact's normal the full set is clipped, as box-box colliders
+// do: the reference face is the face of either polytope most aligned with
+// the normal (within ~10 degrees, else the contact is an edge or a corner and
+// is left as it is); the incident face is the other polytope's face most
+// opposed to it; the incident face is clipped to the reference face's side
+// planes (Sutherland-Hodgman) and its points behind the reference plane, or
+// in front of it by at most `slack`, are the contacts: normal the reference
+// face's, position halfway between the point and the reference plane, depth
+// how far behind the plane. Returns false, leaving `out` alone, when there is
+// no face contact or the clipped set is not credible (empty, or much deeper
+// than libccd's depth).
+struct PolytopeView {
+    const ConvexHull* hull = nullptr; // in the geom frame
+    Mat3 rotation = Mat3::Identity(); // geom frame -> world
+    Vec3 position = Vec3::Zero();     // geom origin, world
+};
+bool clipFaceContacts(const PolytopeView& g1, const PolytopeView& g2, const ContactPoint& seed, double slack,
+                      std::vector<ContactPoint>& out);
 
 } // namespace mag::ode

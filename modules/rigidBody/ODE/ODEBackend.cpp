@@ -63,8 +63,9 @@
 // offset; a concave mesh with convex pieces (its <stem>.pieces.yaml,
 // docs/rigid-bodies.md#convex-pieces) one dConvex geom per piece, a convex
 // mesh of at most 256 vertices one dConvex of its hull (ODE 0.16 collides
-// convex geoms through libccd, one contact per pair, or exactly with the
-// ground plane); every other mesh a dGeomTriMesh of the body-frame mesh.
+// convex geoms through libccd, one contact per pair, which is clipped to the
+// touching faces' contact set below; exactly with the ground plane); every
+// other mesh a dGeomTriMesh of the body-frame mesh.
 // Convex geoms are centred on their hull's centroid: libccd takes the geom
 // centre as a point inside the shape. `trimesh` uses no pieces or hulls;
 // `mesh` makes every body a trimesh (for comparisons and the tests).
@@ -76,7 +77,9 @@
 // dCollide; pairs with a triangle mesh get their normals and depths
 // corrected from the local geometry (ContactManifold.hpp explains why and
 // how: ODE 0.16's trimesh-trimesh contacts between face-to-face meshes carry
-// side normals that throw the upper body sideways); then coincident contacts
+// side normals that throw the upper body sideways); libccd's one contact of
+// two convex geoms (or a box and a convex geom) becomes the contact set of
+// the touching faces (clipFaceContacts there); then coincident contacts
 // are merged and at most maxContacts kept (deepest first, then farthest
 // apart). Contact joints: dContactApprox1 | SoftERP | SoftCFM (| Bounce).
 //
@@ -247,6 +250,21 @@ std::optional<DetectedBox> detectBox(const Shape& shape) {
     const Vec3 size = hi - lo;
     if (std::abs(size.prod() - shape.volume) > tol * shape.volume) return std::nullopt;
     return DetectedBox{size, axes * (0.5 * (lo + hi)), axes};
+}
+
+// Boxes and convex hulls: the shapes whose face contacts are clipped.
+bool polytope(const CollisionShape& cs) {
+    return cs.type == CollisionShape::Type::convex || cs.type == CollisionShape::Type::box;
+}
+ode::PolytopeView polytopeView(dGeomID g, const CollisionShape& cs) {
+    ode::PolytopeView view;
+    const dReal* p = dGeomGetPosition(g);
+    const dReal* r = dGeomGetRotation(g); // 3x4, row major
+    view.position = Vec3(p[0], p[1], p[2]);
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) view.rotation(i, j) = r[4 * i + j];
+    view.hull = &cs.hull;
+    return view;
 }
 
 // A geom as the contact correction sees it (ContactManifold.hpp): pose,
@@ -703,7 +721,8 @@ public:
         for (const auto& [name, n] : count) os << sep << n << " " << name, sep = ", ";
         if (stats_.steps > 0)
             os << "; sub-steps taken " << stats_.subSteps << " in " << stats_.steps << " steps; contacts found "
-               << stats_.contactsFound << ", dropped " << stats_.contactsDropped << ", merged " << stats_.contactsMerged
+               << stats_.contactsFound << ", clipped from convex faces " << stats_.contactsClipped << ", dropped "
+               << stats_.contactsDropped << ", merged " << stats_.contactsMerged
                << ", used " << stats_.contactsUsed << "; sub-steps solved again for friction "
                << stats_.frictionRedone << " (bodies in them " << stats_.frictionRedoneBodies << ")";
         return os.str();
@@ -712,6 +731,7 @@ public:
     // Counters of the contact post-processing (for tests and logs).
     struct Stats {
         long contactsFound = 0, contactsDropped = 0, contactsMerged = 0, contactsUsed = 0;
+        long contactsClipped = 0; // face contacts clipped from libccd's one point per convex pair
         long frictionRedone = 0, frictionRedoneBodies = 0; // sub-steps solved again, bodies in them
         long steps = 0, subSteps = 0;
     };
@@ -797,6 +817,18 @@ private:
             stats_.contactsDropped += ode::correctMeshContacts(contacts_, geomView(g1, *e1->collision),
                                                                geomView(g2, *e2->collision), 0.02 * scale,
                                                                s_.surfaceLayer + 1e-6 * scale);
+        }
+        // Convex polytopes: libccd's one contact becomes the clipped face
+        // contact (ContactManifold.hpp; box-box is ODE's own, already whole).
+        if (n == 1 && e1 && e2 && polytope(*e1->collision) && polytope(*e2->collision) &&
+            !(e1->collision->type == CollisionShape::Type::box && e2->collision->type == CollisionShape::Type::box)) {
+            const double scale = std::min(e1->collision->scale, e2->collision->scale);
+            clipped_.clear();
+            if (ode::clipFaceContacts(polytopeView(g1, *e1->collision), polytopeView(g2, *e2->collision),
+                                      contacts_.front(), s_.surfaceLayer + 1e-6 * scale, clipped_)) {
+                stats_.contactsClipped += static_cast<long>(clipped_.size());
+                contacts_.swap(clipped_);
+            }
         }
         // Convex pieces: the contacts of all piece pairs of two bodies are
         // pooled and reduced together after the collision pass (neighbouring
@@ -992,6 +1024,7 @@ private:
             CollisionShape* cs = add();
             cs->type = CollisionShape::Type::box;
             cs->size = s.kind.size;
+            cs->hull = boxHull(cs->size);
         } else if (!meshOnly_ && s.kind.kind == K::sphere) {
             CollisionShape* cs = add();
             cs->type = CollisionShape::Type::sphere;
@@ -1005,6 +1038,7 @@ private:
             CollisionShape* cs = add();
             cs->type = CollisionShape::Type::box;
             cs->size = box->size;
+            cs->hull = boxHull(cs->size);
             cs->offset = box->centre;
             cs->offsetRotation = Quat(box->axes).normalized();
         } else if (usePieces_ && !s.pieces.empty()) {
@@ -1029,6 +1063,15 @@ private:
                                         nullptr);
         }
         return shapes_.emplace(shape.get(), std::move(list)).first->second;
+    }
+
+    // A box geom's faces, for clipping its contacts with convex geoms.
+    static ConvexHull boxHull(const Vec3& size) {
+        std::vector<Vec3> corners;
+        for (int k = 0; k < 8; ++k)
+            corners.push_back(0.5 * Vec3((k & 1) ? size.x() : -size.x(), (k & 2) ? size.y() : -size.y(),
+                                         (k & 4) ? size.z() : -size.z()));
+        return convexHull(corners, "box geom");
     }
 
     // A dConvex geom's data: the hull about its centroid, which is the geom's
@@ -1183,7 +1226,7 @@ private:
     // Collider output buffer (what ODE may return for one pair) and scratch.
     static constexpr int kCapacity = 64;
     dContact buffer_[kCapacity];
-    std::vector<ode::ContactPoint> contacts_;
+    std::vector<ode::ContactPoint> contacts_, clipped_;
     std::map<std::pair<std::size_t, std::size_t>, Pooled> pool_;
     std::exception_ptr collideError_;
     Stats stats_;
