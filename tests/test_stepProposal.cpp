@@ -6,6 +6,7 @@
 #include "bodyFixture.hpp"
 
 #include <StepAudit.hpp>
+#include <magFoam/Dictionary.hpp>
 
 #include <catch2/catch.hpp>
 
@@ -118,4 +119,51 @@ TEST_CASE("step proposal: free flight and a pull name travel and force stiffness
     // Fixed bodies propose nothing.
     b.fixed = true;
     CHECK_FALSE(std::isfinite(audit(b).stableDeltaT({b}, {wr}).deltaT));
+}
+
+TEST_CASE("step proposal: a body that contacts hold moves by its net acceleration of the last step", "[stepProposal]") {
+    // The plate pressed onto something by 0.5 N and turned about its long
+    // axis by 0.01 N m, both of which the contact balances: over the last
+    // step (0.1 ms) it did not move. The proposal then takes that net
+    // acceleration (zero), not the magnetic wrench's, and only the force
+    // stiffness is left.
+    const Quat q = magtest::axisAngle(-70, Vec3(1, 2, 3));
+    const Body b = plate(q);
+    Wrench wr;
+    wr.force = q * Vec3(0, 0, -0.5);
+    wr.torque = q * Vec3(0.01, 0, 0);
+    solver::StepAudit a = audit(b);
+    const auto before = a.stableDeltaT({b}, {wr});
+    CHECK(before.limit == "turn"); // I^-1 tau from rest: ~0.1 ms
+    std::vector<BodyState> start(1, b);
+    a.check(1, 1e-4, 1e-4, start, {b}, {wr}, 0.0);
+    const auto held = a.stableDeltaT({b}, {wr});
+    const double stiffStep = 2 * std::acos(-1.0) / std::sqrt(0.5 / (b.mass() * 0.0009)) / 20;
+    CHECK(held.limit == "force stiffness");
+    CHECK(held.deltaT == Approx(stiffStep).epsilon(1e-9));
+    CHECK(held.deltaT > 3 * before.deltaT);
+
+    // Where the last step accelerated it by less than the wrench says (a
+    // contact took part of it: 100 m/s^2 against F / m = 280), that counts.
+    start[0].velocity = q * Vec3(0, 0, -0.19);
+    Body moved = b;
+    moved.velocity = q * Vec3(0, 0, -0.2);
+    wr.torque = Vec3::Zero();
+    solver::StepAudit c = audit(b);
+    c.check(1, 1e-4, 1e-4, start, {moved}, {wr}, 0.0);
+    const auto p = c.stableDeltaT({moved}, {wr});
+    const double d = kTravel, v = 0.2, acc = 100.0;
+    CHECK(p.limit == "travel");
+    CHECK(p.deltaT == Approx(2 * d / (v + std::sqrt(v * v + 4 * acc * d))).epsilon(1e-6));
+
+    // It is restart state: written as timeStep.yaml lines, read back, the
+    // same proposal to the bit.
+    const std::string text = c.netAccelerationState({moved});
+    CHECK(text.find("netAcceleration:\n  plate: [") != std::string::npos);
+    const Dict d2 = Dict::fromString(text, "timeStep.yaml");
+    const auto v2 = d2.sub("netAcceleration").get<std::vector<double>>("plate");
+    REQUIRE(v2.size() == 6);
+    solver::StepAudit restarted = audit(b);
+    restarted.restoreNetAcceleration({moved}, {{"plate", {v2[0], v2[1], v2[2], v2[3], v2[4], v2[5]}}});
+    CHECK(restarted.stableDeltaT({moved}, {wr}).deltaT == p.deltaT);
 }

@@ -129,12 +129,22 @@ void run(Case& c, const RunOptions& options) {
     TimeLoop loop(control, start);
     ResultsWriter writer(c.dir(), start.folder ? std::optional<double>(start.time) : std::nullopt,
                          sleeping.enabled());
+    AuditSettings auditSettings = c.control().audit;
+    auditSettings.strict = auditSettings.strict || options.strict;
+    if (magnets.appliedField().timeDependent()) {
+        // A field that changes in time does work on the bodies: their energy may rise.
+        spdlog::info("  audit: the applied field changes in time (table:), so the energy check is off");
+        auditSettings.energyRise = std::numeric_limits<double>::infinity();
+    }
     double lastDeltaT = start.lastDeltaT > 0 ? start.lastDeltaT : c.control().deltaT;
+    StepAudit audit(bodies, auditSettings, magnets.fieldEvaluator().forceTolerance(), gravity);
+    audit.restoreNetAcceleration(bodies, start.netAcceleration);
     auto write = [&](const std::vector<Body>& state, double t, long step, bool withModels) {
         magnets.setTime(t);
         std::vector<StateFile> states;
         if (withModels) {
-            states = modelStates(magnets, *backend, state, loop.adaptive() ? lastDeltaT : 0.0);
+            states = loop.adaptive() ? modelStates(magnets, *backend, state, lastDeltaT, audit.netAccelerationState(state))
+                                     : modelStates(magnets, *backend, state);
             states.push_back({"sleep.yaml", sleeping.stateText(state)});
         }
         writeResults(writer, magnets, state, gravity, t, step, states, options.onWrite,
@@ -145,14 +155,6 @@ void run(Case& c, const RunOptions& options) {
 
     auto stopRequested = [&] { return options.stop && *options.stop; };
     RunStatistics stats(loop, soft);
-    AuditSettings auditSettings = c.control().audit;
-    auditSettings.strict = auditSettings.strict || options.strict;
-    if (magnets.appliedField().timeDependent()) {
-        // A field that changes in time does work on the bodies: their energy may rise.
-        spdlog::info("  audit: the applied field changes in time (table:), so the energy check is off");
-        auditSettings.energyRise = std::numeric_limits<double>::infinity();
-    }
-    StepAudit audit(bodies, auditSettings, magnets.fieldEvaluator().forceTolerance(), gravity);
     // The last good per-step state (poses, velocities, magnetizations), to write
     // on a non-finite one; the bodies' fixed models are not copied every step.
     std::vector<BodyState> lastGood(bodies.size());

@@ -1,6 +1,7 @@
 #include "StepAudit.hpp"
 
 #include <magFoam/Log.hpp>
+#include <magFoam/ResultsWriter.hpp>
 
 #include <Eigen/Eigenvalues>
 
@@ -39,7 +40,7 @@ double surfaceRate(const std::array<Vec3, 8>& corners, const Vec3& axis) {
 
 // stableDeltaT for one body (see the header); `limit` names the criterion that set it.
 double bodyStableDeltaT(const Body& b, const BodyGeometry& g, const Wrench& w, double travel,
-                        bool implicitTilt = false, const char** limit = nullptr) {
+                        bool implicitTilt = false, const char** limit = nullptr, const NetAcceleration* net = nullptr) {
     double dt = std::numeric_limits<double>::infinity();
     const char* why = "";
     auto take = [&](double candidate, const char* name) {
@@ -52,14 +53,20 @@ double bodyStableDeltaT(const Body& b, const BodyGeometry& g, const Wrench& w, d
         if (a > 0) return 2.0 * d / (v + std::sqrt(v * v + 4.0 * a * d));
         return v > 0 ? d / v : std::numeric_limits<double>::infinity();
     };
-    take(within(b.velocity.norm(), w.force.norm() / b.mass()), "travel");
+    // A body that contacts hold moves by less than its magnetic force says:
+    // the net acceleration of the last step, where known, bounds it.
+    double a = w.force.norm() / b.mass();
+    if (net) a = std::min(a, net->linear.norm());
+    take(within(b.velocity.norm(), a), "travel");
     // The surface's speed and acceleration from the spin and the magnetic
     // torque (I^-1 tau: a clip's torque about its long axis meets its smallest
     // inertia, about its normal its largest), in the body frame.
     const Quat toBody = b.orientation.conjugate();
     const Vec3 spin = toBody * b.angularVelocity;
     const Vec3 alpha = g.inverseInertia * (toBody * w.totalTorque());
-    take(within(surfaceRate(g.corners, spin), surfaceRate(g.corners, alpha)), "turn");
+    double surfaceAcceleration = surfaceRate(g.corners, alpha);
+    if (net) surfaceAcceleration = std::min(surfaceAcceleration, surfaceRate(g.corners, toBody * net->angular));
+    take(within(surfaceRate(g.corners, spin), surfaceAcceleration), "turn");
     const double twoPi = 2.0 * pi;
     const double forceOmega2 = w.force.norm() / (b.mass() * g.size);
     if (forceOmega2 > 0) take(twoPi / std::sqrt(forceOmega2) / kStepsPerPeriod, "force stiffness");
@@ -170,6 +177,9 @@ std::optional<std::string> StepAudit::check(long step, double t, double dt, cons
                                               .norm() / dtheta);
             if (omega2 > 0) safe = std::min(safe, 2.0 * pi / std::sqrt(omega2) / kStepsPerPeriod);
         }
+        k.net.linear = (b.velocity - before[i].velocity) / dt;
+        k.net.angular = (b.angularVelocity - before[i].angularVelocity) / dt;
+        k.haveNet = std::isfinite(k.net.linear.norm() + k.net.angular.norm());
         k.havePrevious = true;
         k.previousPosition = before[i].position;
         k.previousOrientation = before[i].orientation;
@@ -217,11 +227,39 @@ StepProposal StepAudit::stableDeltaT(const std::vector<Body>& bodies, const std:
         const Track& k = tracks_[i];
         if (bodies[i].fixed || k.geometry.size <= 0) continue;
         const char* limit = "";
-        const double dt =
-            bodyStableDeltaT(bodies[i], k.geometry, wrenches[i], kProposalTravel * settings_.travel, implicitTilt, &limit);
+        const double dt = bodyStableDeltaT(bodies[i], k.geometry, wrenches[i], kProposalTravel * settings_.travel,
+                                           implicitTilt, &limit, k.haveNet ? &k.net : nullptr);
         if (dt < p.deltaT) p.deltaT = dt, p.body = i, p.limit = limit;
     }
     return p;
+}
+
+std::string StepAudit::netAccelerationState(const std::vector<Body>& bodies) const {
+    std::string out;
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        const Track& k = tracks_[i];
+        if (bodies[i].fixed || !k.haveNet) continue;
+        if (out.empty())
+            out = "# each body's acceleration over the last step, contacts included (m/s^2, rad/s^2):\n"
+                  "# the next step's proposal (docs/dynamics.md#adaptive-time-step)\nnetAcceleration:\n";
+        const Vec3& a = k.net.linear;
+        const Vec3& w = k.net.angular;
+        out += "  " + bodies[i].name + ": [" + formatExact(a.x()) + ", " + formatExact(a.y()) + ", " +
+               formatExact(a.z()) + ", " + formatExact(w.x()) + ", " + formatExact(w.y()) + ", " +
+               formatExact(w.z()) + "]\n";
+    }
+    return out;
+}
+
+void StepAudit::restoreNetAcceleration(const std::vector<Body>& bodies,
+                                       const std::vector<std::pair<std::string, std::array<double, 6>>>& saved) {
+    for (const auto& [name, v] : saved)
+        for (std::size_t i = 0; i < bodies.size(); ++i)
+            if (bodies[i].name == name) {
+                tracks_[i].net.linear = Vec3(v[0], v[1], v[2]);
+                tracks_[i].net.angular = Vec3(v[3], v[4], v[5]);
+                tracks_[i].haveNet = true;
+            }
 }
 
 double StepAudit::energyDrift() const {

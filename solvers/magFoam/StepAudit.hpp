@@ -31,6 +31,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace mag::solver {
@@ -42,6 +43,12 @@ struct StepProposal {
     double deltaT = std::numeric_limits<double>::infinity();
     std::size_t body = static_cast<std::size_t>(-1);
     std::string_view limit;
+};
+
+// A body's acceleration over the last step, contacts included (world frame).
+struct NetAcceleration {
+    Vec3 linear = Vec3::Zero();  // m/s^2
+    Vec3 angular = Vec3::Zero(); // rad/s^2
 };
 
 // What the audit needs of a body's shape, once per run (body frame).
@@ -90,6 +97,14 @@ public:
     StepProposal stableDeltaT(const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches,
                               bool implicitTilt = false) const;
 
+    // Adaptive steps: the proposal takes a body's acceleration over the last
+    // step (contacts included) where it is below the magnetic one, so it is
+    // part of the restart state: timeStep.yaml lines ("netAcceleration:"),
+    // and read back (TimeLoop.hpp Start::netAcceleration).
+    std::string netAccelerationState(const std::vector<Body>& bodies) const;
+    void restoreNetAcceleration(const std::vector<Body>& bodies,
+                                const std::vector<std::pair<std::string, std::array<double, 6>>>& saved);
+
     // What the run saw (tests).
     int warnings() const { return warnings_; }
     double energyDrift() const; // (last - first total energy) / peak kinetic energy
@@ -99,6 +114,8 @@ private:
         explicit Track(const Body& body) : geometry(body) {}
         BodyGeometry geometry;
         bool havePrevious = false;
+        bool haveNet = false;
+        NetAcceleration net;
         Vec3 previousPosition = Vec3::Zero(), previousForce = Vec3::Zero(), previousTorque = Vec3::Zero();
         Quat previousOrientation = Quat::Identity();
         int quietSteps = 0;

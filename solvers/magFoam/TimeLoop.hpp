@@ -17,6 +17,7 @@
 #include <magFoam/ResultsWriter.hpp>
 #include <magFoam/RigidBodyBackend.hpp>
 
+#include <array>
 #include <chrono>
 #include <filesystem>
 #include <optional>
@@ -32,6 +33,9 @@ struct Start {
     long step = 0;
     std::optional<std::filesystem::path> folder;
     double lastDeltaT = 0; // adaptive steps: the last step's length (0: none)
+    // Adaptive steps: the bodies' accelerations over the last step, contacts
+    // included (linear m/s^2, angular rad/s^2; StepAudit::restoreNetAcceleration).
+    std::vector<std::pair<std::string, std::array<double, 6>>> netAcceleration;
 };
 
 // startTime, or with startFrom: latestTime the newest time folder: its
@@ -40,9 +44,12 @@ struct Start {
 Start startRun(const Case& c, std::vector<Body>& bodies, MagneticSystem& magnets, RigidBodyBackend& backend);
 
 // The models' restart files for ResultsWriter::write (empty text: no state),
-// and with adaptive steps the last step's length (timeStep.yaml).
+// and with adaptive steps the last step's length and what the next proposal
+// carries over (`proposalState`, StepAudit::netAccelerationState) in
+// timeStep.yaml.
 std::vector<StateFile> modelStates(const MagneticSystem& magnets, const RigidBodyBackend& backend,
-                                   const std::vector<Body>& bodies, double lastDeltaT = 0);
+                                   const std::vector<Body>& bodies, double lastDeltaT = 0,
+                                   const std::string& proposalState = {});
 
 // Steps are numbered from startTime (step 0) on, also across restarts.
 // Fixed steps (the default): step n ends at time startTime + n deltaT, and is

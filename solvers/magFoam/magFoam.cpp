@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
   postProcessing/energy.csv   time [s], kinetic, gravitational, magnetic, total [J]
   postProcessing/induction.csv (soft bodies) time [s], step, iterations, residual [-], converged (0/1)
   <time>/bodies.yaml          the state of every body (restart with startFrom: latestTime)
-  <time>/timeStep.yaml        the last time step (adjustTimeStep runs)
+  <time>/timeStep.yaml        the last time step and the bodies' net accelerations (adjustTimeStep runs)
   VTK/bodies.pvd, VTK/bodies_N.vtp   surfaces per write time (ParaView), see README "Outputs"
 )");
     if (!args.parse(argc, argv)) return args.exitCode();
