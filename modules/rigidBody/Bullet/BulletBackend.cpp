@@ -531,8 +531,14 @@ private:
             for (const ConvexHull& piece : s.pieces) {
                 auto hull = std::make_unique<btConvexHullShape>();
                 for (const Vec3& v : piece.points) hull->addPoint(bt(Vec3(v - piece.centroid)), false);
-                hull->recalcLocalAabb();
+                // The margin before the AABB: recalcLocalAabb() stores the box
+                // with the margin then set (Bullet's default, 0.04 m), and every
+                // AABB query adds the margin again. Set after, each piece's box
+                // was 8 cm wide, every piece met every piece of every body
+                // nearby in the narrow phase and a Fig. 8 rigid step cost 95 ms
+                // (5 ms with the right boxes).
                 hull->setMargin(margin_);
+                hull->recalcLocalAabb();
                 hull->initializePolyhedralFeatures();
                 btTransform at;
                 at.setIdentity();
@@ -546,8 +552,8 @@ private:
             // the ground plane when contacts are found anew every sub-step.
             auto hull = std::make_unique<btConvexHullShape>();
             for (const Vec3& v : s.mesh.vertices) hull->addPoint(bt(v), false);
+            hull->setMargin(margin_);  // before the AABB (as for the pieces above)
             hull->recalcLocalAabb();
-            hull->setMargin(margin_);
             hull->initializePolyhedralFeatures();
             h.shape = std::move(hull), h.kind = "convex hull";
         } else {
