@@ -186,6 +186,19 @@ public:
         world_ = std::make_unique<MidpointContactWorld>(dispatcher_.get(), broadphase_.get(), solver_.get(),
                                                         config_.get());
         world_->setGravity(bt(s_.gravity));
+        // Hull-hull contacts from the separating-axis test on the hulls' faces
+        // and edges, not from GJK/EPA. Bullet's GJK has absolute tolerances
+        // made for metre-sized shapes (its simplex solver calls a tetrahedron
+        // degenerate when its triple product is under 1e-8 m^3, i.e. edges
+        // under ~2 mm) and on millimetre pieces it stopped early and reported
+        // overlapping pieces as apart: the bend pieces of two Fig. 8 clips,
+        // 0.2 mm into each other, came out 50-250 um apart, so no contact held
+        // them and the clips ended 0.37 mm (of a 0.9 mm wire) into each other.
+        // The same pieces scaled up 10x give the right depths, and so does the
+        // separating-axis test, which compares projections on unit axes only.
+        // Boxes against boxes and anything against the ground plane have
+        // their own algorithms and are not affected.
+        world_->getDispatchInfo().m_enableSatConvex = true;
         btContactSolverInfo& info = world_->getSolverInfo();
         info.m_numIterations = iterations_;
         info.m_erp2 = s_.erp;
