@@ -254,16 +254,15 @@ inline BarOnBlock barOnBlock(const std::string& type, bool hexagonal) {
     // The hexagon (corners at 0, 60, ... degrees) has a side face along -y:
     // its axis z turned to x, its y to z, so that face lies down.
     const double r = 0.002, half = hexagonal ? r * std::sqrt(3.0) / 2 : 0.002;
-    Body bar = hexagonal ? makeBody("bar", mag::makeCylinder(r, 0.04, 6), asMesh) : cube("bar", 0.01);
+    mag::ShapeKind box;
+    box.kind = Kind::box;
+    box.size = Vec3(0.04, 0.004, 0.004);
+    Body bar = hexagonal ? makeBody("bar", mag::makeCylinder(r, 0.04, 6), asMesh)
+                         : makeBody("bar", mag::makeBox(box.size), box);
     if (hexagonal) {
         mag::Mat3 R;
         R << 0, 0, 1, 1, 0, 0, 0, 1, 0; // columns: x -> y, y -> z, z -> x
         bar.orientation = Quat(R);
-    } else {
-        mag::ShapeKind k;
-        k.kind = Kind::box;
-        k.size = Vec3(0.04, 0.004, 0.004);
-        bar = makeBody("bar", mag::makeBox(k.size), k);
     }
     bar.position = Vec3(0, 0, half + 5e-7);
     std::vector<Body> bodies = {block, bar};

@@ -265,7 +265,8 @@ bool clipFaceContacts(const PolytopeView& g1, const PolytopeView& g2, const Cont
         if (side.squaredNorm() == 0) continue;
         clipToHalfSpace(polygon, a, side.normalized(), scratch);
     }
-    std::vector<ContactPoint> clipped;
+    // Appended to `out`, and taken back if the set is not credible.
+    const std::size_t first = out.size();
     double deepest = -kInfinity;
     for (const Vec3& q : polygon) {
         const double height = (q - origin).dot(nr); // < 0: behind the reference face
@@ -276,12 +277,14 @@ bool clipFaceContacts(const PolytopeView& g1, const PolytopeView& g2, const Cont
         c.depth = -height;
         c.source = seed.source;
         deepest = std::max(deepest, c.depth);
-        clipped.push_back(c);
+        out.push_back(c);
     }
     // libccd's depth is the least separating translation, so no face point
     // lies much deeper; if one does, the faces are not the contact's.
-    if (clipped.empty() || deepest > 1.5 * std::max(seed.depth, 0.0) + slack) return false;
-    out.insert(out.end(), clipped.begin(), clipped.end());
+    if (out.size() == first || deepest > 1.5 * std::max(seed.depth, 0.0) + slack) {
+        out.resize(first);
+        return false;
+    }
     return true;
 }
 

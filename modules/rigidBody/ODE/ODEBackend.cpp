@@ -256,13 +256,18 @@ std::optional<DetectedBox> detectBox(const Shape& shape) {
 bool polytope(const CollisionShape& cs) {
     return cs.type == CollisionShape::Type::convex || cs.type == CollisionShape::Type::box;
 }
-ode::PolytopeView polytopeView(dGeomID g, const CollisionShape& cs) {
-    ode::PolytopeView view;
+// A geom's world pose: its centre and its rotation (geom frame -> world).
+void geomPose(dGeomID g, Vec3& position, Mat3& rotation) {
     const dReal* p = dGeomGetPosition(g);
     const dReal* r = dGeomGetRotation(g); // 3x4, row major
-    view.position = Vec3(p[0], p[1], p[2]);
+    position = Vec3(p[0], p[1], p[2]);
     for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) view.rotation(i, j) = r[4 * i + j];
+        for (int j = 0; j < 3; ++j) rotation(i, j) = r[4 * i + j];
+}
+
+ode::PolytopeView polytopeView(dGeomID g, const CollisionShape& cs) {
+    ode::PolytopeView view;
+    geomPose(g, view.position, view.rotation);
     view.hull = &cs.hull;
     return view;
 }
@@ -271,13 +276,9 @@ ode::PolytopeView polytopeView(dGeomID g, const CollisionShape& cs) {
 // support function, and triangles (meshes) or surface normals (primitives).
 ode::GeomView geomView(dGeomID g, const CollisionShape& cs) {
     ode::GeomView view;
-    const dReal* p = dGeomGetPosition(g);
-    const dReal* r = dGeomGetRotation(g); // 3x4, row major
-    const Vec3 c(p[0], p[1], p[2]);
-    Mat3 R;
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) R(i, j) = r[4 * i + j];
-    view.rotation = R, view.position = c;
+    geomPose(g, view.position, view.rotation);
+    const Vec3 c = view.position;
+    const Mat3 R = view.rotation;
     switch (cs.type) {
     case CollisionShape::Type::box:
         view.support = [c, R, half = 0.5 * cs.size](const Vec3& u) {
