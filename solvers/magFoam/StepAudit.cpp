@@ -138,8 +138,15 @@ std::optional<std::string> StepAudit::check(long step, double t, double dt, cons
     }
     mag = magnetic;
     const double total = kin + grav + mag;
-    if (!haveStart_) startEnergy_ = total, haveStart_ = true;
+    if (!haveStart_) startEnergy_ = lowestEnergy_ = total, haveStart_ = true;
     lastEnergy_ = total;
+    // A passive scene does not regain what it has lost: a rise above the
+    // lowest total so far is energy made after the start's margin was spent,
+    // which the comparison with the start no longer sees. Reported, not
+    // warned: a contact solver pushing penetrated magnets apart against their
+    // pull counts too (docs/dynamics.md#audit).
+    if (total - lowestEnergy_ > highestRecovery_) highestRecovery_ = total - lowestEnergy_, recoveryTime_ = t - dt;
+    lowestEnergy_ = std::min(lowestEnergy_, total);
     peakKinetic_ = std::max(peakKinetic_, kin);
     const double rise = total - startEnergy_;
     highestRise_ = std::max(highestRise_, rise);
@@ -285,8 +292,9 @@ void StepAudit::summary(const std::vector<Body>& bodies) const {
         if (surface < kRestSpeed) ++resting;
     }
     spdlog::info("Audit: total energy {:.6g} J at the start, {:.6g} J at the last step, drift {:.3g} of the peak "
-                 "kinetic energy {:.3g} J; at most {:.3g} J above the start",
-                 startEnergy_, lastEnergy_, energyDrift(), peakKinetic_, std::max(0.0, highestRise_));
+                 "kinetic energy {:.3g} J; at most {:.3g} J above the start, {:.3g} J above its lowest before{}",
+                 startEnergy_, lastEnergy_, energyDrift(), peakKinetic_, std::max(0.0, highestRise_),
+                 highestRecovery_, highestRecovery_ > 0 ? fmt::format(" (t = {:.4g} s)", recoveryTime_) : "");
     spdlog::info("  highest speed {:.3g} m/s{}; {} of {} dynamic bodies at rest at the end (< 1 mm/s); {} "
                  "warning(s)",
                  maxSpeed_, fastest_.empty() ? "" : " (body '" + fastest_ + "')", resting, dynamic, warnings_);

@@ -18,8 +18,10 @@
 // of angle). Once per episode:
 // a condition must stay clear for 100 steps before it warns again. With
 // `strict` (controlDict audit.strict, magFoam -strict) check() returns the
-// message as a stop instead. summary() logs the run's energy drift, its
-// highest speed and how many bodies are at rest at the end.
+// message as a stop instead. summary() logs the run's energy drift, how far
+// the total rose above its start and above its lowest before (energy regained
+// after it was lost), its highest speed and how many bodies are at rest at
+// the end.
 #pragma once
 
 #include <magFoam/Body.hpp>
@@ -108,6 +110,7 @@ public:
     // What the run saw (tests).
     int warnings() const { return warnings_; }
     double energyDrift() const; // (last - first total energy) / peak kinetic energy
+    double energyRecovery() const { return highestRecovery_; } // J: most above the lowest total before
 
 private:
     struct Track {
@@ -127,6 +130,7 @@ private:
     std::vector<Track> tracks_;
     bool haveStart_ = false;
     double startEnergy_ = 0, lastEnergy_ = 0, peakKinetic_ = 0, highestRise_ = 0;
+    double lowestEnergy_ = 0, highestRecovery_ = 0, recoveryTime_ = 0;
     double maxSpeed_ = 0;
     std::string fastest_;
     int energyQuiet_ = 0, warnings_ = 0;
