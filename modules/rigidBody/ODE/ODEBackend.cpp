@@ -891,9 +891,12 @@ private:
             m.starved = false;
             const dContactGeom& g = m.contact.geom;
             const Vec3 n(g.normal[0], g.normal[1], g.normal[2]), p(g.pos[0], g.pos[1], g.pos[2]);
-            // Force on the side of body 1 (ODE reports the force on body 2 where there is no body 1).
-            const Vec3 f = m.b1 ? Vec3(m.feedback.f1[0], m.feedback.f1[1], m.feedback.f1[2])
-                                : Vec3(-m.feedback.f2[0], -m.feedback.f2[1], -m.feedback.f2[2]);
+            // Force on the side of geom 1. f1 is the force on the joint's
+            // first body; ODE attaches a joint given (none, body) as (body,
+            // none), so where geom 1 is fixed f1 is geom 2's body's force (f2
+            // stays zero: reading it, the check saw no normal force there).
+            const Vec3 f1(m.feedback.f1[0], m.feedback.f1[1], m.feedback.f1[2]);
+            const Vec3 f = m.b1 ? f1 : Vec3(-f1);
             m.normalForce = f.dot(n);
             if (!(m.normalForce > 0)) continue;
             const Vec3 v = pointVelocity(m.b1, p) - pointVelocity(m.b2, p);
