@@ -111,8 +111,8 @@ TEST_CASE("ODE friction: four magnets that fall into a chain come to rest on the
 }
 
 TEST_CASE("ODE friction: cubes pressed together slide to a stop on a fixed body too", "[odeFriction]") {
-    // The pair of the test above on a fixed 10 cm block instead of the
-    // ground plane, the block listed first or last: friction against a fixed
+    // The pair of "cubes pressed together slide as one body" on a fixed
+    // 10 cm block instead of the ground plane, the block listed first or last: friction against a fixed
     // body (a static geom) stops it as the ground does. ODE attaches a contact
     // whose first geom is static as (body, none) and reports the force in the
     // feedback's f1, which the re-solve reads (it once read f2, zero there).
