@@ -20,12 +20,14 @@ namespace {
 // Two 1 cm, 7.5 g cubes side by side on the ground, pressed together by
 // +-55 N along x (magnets in a chain), sliding along y at v0. Returns the
 // time until the pair's speed falls below 1e-6 m/s (or `seconds`), and the
-// speed then.
+// speed then. With `support` "blockFirst" or "blockLast" they slide on a
+// fixed 10 cm block instead of the ground plane, listed before or after them.
 struct Slide {
     double stopTime = -1, speed = 0;
 };
-Slide slidePressedPair(const std::string& bound, double seconds) {
-    auto rb = backend("type: ODE\ngravity: [0, 0, -9.81]\nground: {height: 0}\n"
+Slide slidePressedPair(const std::string& bound, double seconds, const std::string& support = "ground") {
+    const bool block = support != "ground";
+    auto rb = backend(std::string("type: ODE\ngravity: [0, 0, -9.81]\n") + (block ? "" : "ground: {height: 0}\n") +
                       "contact: {friction: 0.5, restitution: 0, frictionBound: " + bound + "}\n");
     std::vector<Body> bodies = {cube("left", 0.01), cube("right", 0.01)};
     for (int i = 0; i < 2; ++i) {
@@ -34,14 +36,21 @@ Slide slidePressedPair(const std::string& bound, double seconds) {
         b.position.z() = 0.005 - 1e-6; // resting in the surface layer
         b.velocity = Vec3(0, 0.02, 0);
     }
+    const std::size_t left = support == "blockFirst" ? 1 : 0;
+    if (block) {
+        Body base = cube("block", 0.1);
+        base.fixed = true;
+        base.position = Vec3(0, 0, -0.05);
+        bodies.insert(bodies.begin() + (left == 1 ? 0 : 2), base);
+    }
     rb->setup(bodies);
-    std::vector<Wrench> w(2);
-    w[0].force = Vec3(55, 0, 0), w[1].force = Vec3(-55, 0, 0);
+    std::vector<Wrench> w(bodies.size());
+    w[left].force = Vec3(55, 0, 0), w[left + 1].force = Vec3(-55, 0, 0);
     const double dt = 1e-4;
     Slide s;
     for (int n = 0; n < static_cast<int>(seconds / dt); ++n) {
         rb->step(bodies, w, dt);
-        s.speed = std::max(bodies[0].velocity.norm(), bodies[1].velocity.norm());
+        s.speed = std::max(bodies[left].velocity.norm(), bodies[left + 1].velocity.norm());
         if (s.stopTime < 0 && s.speed < 1e-6) s.stopTime = (n + 1) * dt;
     }
     return s;
@@ -112,41 +121,18 @@ TEST_CASE("ODE friction: four magnets that fall into a chain come to rest on the
 
 TEST_CASE("ODE friction: cubes pressed together slide to a stop on a fixed body too", "[odeFriction]") {
     // The pair of "cubes pressed together slide as one body" on a fixed
-    // 10 cm block instead of the ground plane, the block listed first or last: friction against a fixed
-    // body (a static geom) stops it as the ground does. ODE attaches a contact
-    // whose first geom is static as (body, none) and reports the force in the
-    // feedback's f1, which the re-solve reads (it once read f2, zero there).
-    // This does not catch that misreading: ODE moves a moving geom to the
-    // front of its space, so after the first sub-step the pair's geoms come
-    // first either way.
-    for (bool blockFirst : {true, false}) {
-        auto rb = backend("type: ODE\ngravity: [0, 0, -9.81]\n"
-                          "contact: {friction: 0.5, restitution: 0, frictionBound: normalForce}\n");
-        Body block = cube("block", 0.1);
-        block.fixed = true;
-        block.position = Vec3(0, 0, -0.05);
-        std::vector<Body> bodies = {cube("left", 0.01), cube("right", 0.01)};
-        for (int i = 0; i < 2; ++i) {
-            bodies[i].position = Vec3(i * (0.01 - 1e-6), 0, 0.005 - 1e-6);
-            bodies[i].velocity = Vec3(0, 0.02, 0);
-        }
-        if (blockFirst) bodies.insert(bodies.begin(), block);
-        else bodies.push_back(block);
-        rb->setup(bodies);
-        std::vector<Wrench> w(bodies.size());
-        const std::size_t left = blockFirst ? 1 : 0;
-        w[left].force = Vec3(55, 0, 0), w[left + 1].force = Vec3(-55, 0, 0);
-        const double dt = 1e-4;
-        double stopTime = -1, speed = 0;
-        for (int n = 0; n < 500; ++n) {
-            rb->step(bodies, w, dt);
-            speed = std::max(bodies[left].velocity.norm(), bodies[left + 1].velocity.norm());
-            if (stopTime < 0 && speed < 1e-6) stopTime = (n + 1) * dt;
-        }
-        INFO("block " << (blockFirst ? "first" : "last") << ": stopped after " << stopTime << " s, speed at the end "
-                      << speed);
+    // 10 cm block instead of the ground plane, the block listed first or last:
+    // friction against a fixed body (a static geom) stops it as the ground
+    // does. ODE attaches a contact whose first geom is static as (body, none)
+    // and reports the force in the feedback's f1, which the re-solve reads (it
+    // once read f2, zero there). This does not catch that misreading: ODE
+    // moves a moving geom to the front of its space, so after the first
+    // sub-step the pair's geoms come first either way.
+    for (const std::string support : {"blockFirst", "blockLast"}) {
+        const Slide s = slidePressedPair("normalForce", 0.05, support);
+        INFO(support << ": stopped after " << s.stopTime << " s, speed at the end " << s.speed);
         // As on the ground: v0 / (mu g) = 4.08 ms, within two steps (5 %).
-        CHECK(stopTime == Approx(0.02 / (0.5 * 9.81)).epsilon(0.05));
-        CHECK(speed < 1e-6);
+        CHECK(s.stopTime == Approx(0.02 / (0.5 * 9.81)).epsilon(0.05));
+        CHECK(s.speed < 1e-6);
     }
 }
