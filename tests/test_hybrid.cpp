@@ -259,6 +259,14 @@ TEST_CASE("hybrid keys are checked, also in nested dictionaries", "[hybrid][badI
     CHECK_THROWS_WITH(field("type: hybrid\nnear: {type: MBN}\n"), Contains("unknown field evaluator type 'MBN'"));
     CHECK_THROWS_WITH(field("type: hybrid\nfar: {type: EDM, m: 2}\n"), Contains("m"));
     CHECK_THROWS_WITH(field("type: hybrid\nfarr: {type: EDM}\n"), Contains("farr"));
+    // MBM's force form: a known word, and only with a potential's field
+    CHECK_THROWS_WITH(field("type: hybrid\nnear: {type: MBM, quadrature: {type: regular, n: 1, form: sigma}}\n"),
+                      Contains("form") && Contains("split") && Contains("surfaceCharge"));
+    CHECK_THROWS_WITH(field("type: hybrid\nnear: {type: MBM, overlap: amperian, quadrature: {form: surfaceCharge}}\n"),
+                      Contains("form") && Contains("overlap: charge or exterior"));
+    CHECK_THAT(field("type: hybrid\nnear: {type: MBM, overlap: exterior, quadrature: {type: regular, n: 1, "
+                     "form: surfaceCharge}}\n")->describe(),
+               Contains("near: MBM (quadrature regular n=1 form=surfaceCharge, overlap exterior)"));
     // Any registered evaluator nests, hybrid included.
     CHECK_THAT(field("type: hybrid\nfar: {type: hybrid, far: {type: EDM, n: 1}}\n")->describe(),
                Contains("far: hybrid (") && Contains("far: EDM (n=1"));

@@ -778,3 +778,74 @@ TEST_CASE("overlap: the exterior force is the gradient of its energy", "[mbm][wr
         CHECK(w.energy == Approx(energyAt(ct)).epsilon(1e-6));
     }
 }
+
+// form surfaceCharge (docs/physics.md#force-form): with samples that move rigidly with
+// the target, F = -grad U and T + Tm = -dU/dtheta for ANY rule, because the field on
+// each sample is -mu0 grad of a potential (phi, plus f psi for exterior). Checked with
+// the coarsest rule there is (one midpoint per face: 6 samples on the target box) on
+// a target lying flat on the source, 50 um into it (its bottom sample inside: the
+// exterior model's psi term), and 10 um above it. The split form (Eqs. 16-18) agrees
+// with -grad U only to the rule's accuracy: printed, and checked to be far off here
+// so that the check above would notice a form that is not a gradient.
+TEST_CASE("surfaceCharge form: the exact gradient of the sampled energy, however coarse the rule",
+          "[mbm][wrench]") {
+    const Vec3 hs = kTiltedSourceHalf, ht(0.004, 0.003, 0.0035), Ms = kTiltedMs;
+    const Mesh ms = boxMesh(hs), mt = boxMesh(ht);
+    const PolyhedronTables src(ms.V, ms.T), tgt(mt.V, mt.T);
+    const SurfaceQuadrature q = buildSurfaceQuadrature(tgt, QuadratureRule::regular, 1);
+    REQUIRE(q.points.size() == 6);
+    const Eigen::Matrix3d R0 = Eigen::AngleAxisd(0.4, Vec3::UnitZ()).toRotationMatrix();
+    const Vec3 Mtb = Vec3(0.3, -0.8, 0.5).normalized() * 1.1 * kMs; // body frame
+    for (const double depth : {50e-6, -10e-6}) {
+        const Vec3 c(0.0013, -0.0009, hs.z() + ht.z() - depth);
+        for (OverlapModel model : {OverlapModel::charge, OverlapModel::exterior}) {
+            for (ForceForm form : {ForceForm::surfaceCharge, ForceForm::split}) {
+                auto at = [&](const Eigen::Matrix3d& R, const Vec3& p) {
+                    const Samples s = place(q, R, p);
+                    return interactionWrench(src, Ms, s.p, s.w, s.n, R * Mtb, p, model, form);
+                };
+                const Wrench w = at(R0, c);
+                Vec3 grad, dU;
+                const double h = 1e-7, a = 1e-6; // m, rad: no sample crosses a source face
+                for (int k = 0; k < 3; ++k) {
+                    const Vec3 e = h * Vec3::Unit(k);
+                    grad[k] = (at(R0, c + e).energy - at(R0, c - e).energy) / (2 * h);
+                    const Eigen::Matrix3d Rp = Eigen::AngleAxisd(a, Vec3::Unit(k)).toRotationMatrix() * R0;
+                    const Eigen::Matrix3d Rm = Eigen::AngleAxisd(-a, Vec3::Unit(k)).toRotationMatrix() * R0;
+                    dU[k] = (at(Rp, c).energy - at(Rm, c).energy) / (2 * a);
+                }
+                const double ef = (w.force + grad).norm() / w.force.norm();
+                const double et = (w.totalTorque() + dU).norm() / w.totalTorque().norm();
+                std::printf("%s, %s, depth %g um: |F + grad U|/|F| = %.2e, |T + dU/dtheta|/|T| = %.2e\n",
+                            model == OverlapModel::charge ? "charge" : "exterior",
+                            form == ForceForm::split ? "split" : "surfaceCharge", depth * 1e6, ef, et);
+                if (form == ForceForm::surfaceCharge) {
+                    // central differences: truncation (h/1 mm)^2 ~ 1e-8, rounding ~1e-10
+                    CHECK(ef <= 1e-6);
+                    CHECK(et <= 1e-6);
+                } else {
+                    CHECK(std::max(ef, et) > 1e-2); // 6 samples: the split form is no gradient
+                }
+            }
+        }
+    }
+    // Both forms converge to the same wrench as the rule is refined (10 um gap).
+    const SurfaceQuadrature fine = buildSurfaceQuadrature(tgt, QuadratureRule::gauss, 40);
+    const Vec3 c(0.0013, -0.0009, hs.z() + ht.z() + 10e-6);
+    const Samples s = place(fine, R0, c);
+    const Wrench a = interactionWrench(src, Ms, s.p, s.w, s.n, R0 * Mtb, c, OverlapModel::charge, ForceForm::split);
+    const Wrench b =
+        interactionWrench(src, Ms, s.p, s.w, s.n, R0 * Mtb, c, OverlapModel::charge, ForceForm::surfaceCharge);
+    std::printf("gauss 40, 10 um gap: forms differ by %.2e (force), %.2e (torque)\n",
+                (a.force - b.force).norm() / a.force.norm(),
+                (a.totalTorque() - b.totalTorque()).norm() / a.totalTorque().norm());
+    // 10 um against a face of 4 mm sampled by 40 Gauss points: both converge to ~1e-3
+    CHECK((a.force - b.force).norm() <= 5e-3 * a.force.norm());
+    CHECK((a.totalTorque() - b.totalTorque()).norm() <= 5e-3 * a.totalTorque().norm());
+    CHECK(a.energy == Approx(b.energy).epsilon(1e-12));
+    CHECK_THROWS_WITH(interactionWrench(src, Ms, s.p, s.w, s.n, R0 * Mtb, c, OverlapModel::amperian,
+                                        ForceForm::surfaceCharge),
+                      Catch::Contains("charge or exterior"));
+    CHECK(forceFormFromName("surfaceCharge") == ForceForm::surfaceCharge);
+    CHECK_THROWS_WITH(forceFormFromName("sigma"), Catch::Contains("split, surfaceCharge"));
+}

@@ -206,6 +206,7 @@ struct Context {
     const Vec3& Mt;
     const Vec3& rc;
     OverlapModel model;
+    ForceForm form;
     int order;
     const std::vector<Geometry>& geometry;
     const TargetPieces& pieces;
@@ -240,7 +241,7 @@ Wrench tensorRule(const Context& ctx, const Geometry& g, double s0, double s1, d
             weights.push_back(rs.w[i] * rt.w[j] * hs * ht * jac);
         }
     ctx.samples.fetch_add(points.size(), std::memory_order_relaxed);
-    return interactionWrench(ctx.source, ctx.Ms, points, weights, normals, ctx.Mt, ctx.rc, ctx.model);
+    return interactionWrench(ctx.source, ctx.Ms, points, weights, normals, ctx.Mt, ctx.rc, ctx.model, ctx.form);
 }
 
 // The element rule on the box [s0, s1] x [t0, t1] of geometry g.
@@ -430,7 +431,7 @@ AdaptiveResult adaptiveInteraction(const PolyhedronTables& source, const Vec3& M
             }
         boxes.emplace_back(0.5 * (low + high), 0.5 * (high - low));
     }
-    const Context ctx{source, Ms, Mt, rc, model, settings.order, geometry, pieces,
+    const Context ctx{source, Ms, Mt, rc, model, settings.form, settings.order, geometry, pieces,
                       target.boundingRadius(), boxes, settings.tolerance};
     const int firstOrder = std::min(kMaxOrder, settings.order + kOrderStep);
 

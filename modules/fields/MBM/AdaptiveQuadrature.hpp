@@ -52,6 +52,7 @@ struct AdaptiveSettings {
     double tolerance = 1e-4;          ///< relative, of the pair's force and torque / L
     int order = 3;                    ///< Gauss points per element side, 1..12
     std::size_t maxSamples = 200000;  ///< per pair; reached = `capped`
+    ForceForm form = ForceForm::split; ///< how each element's integrals are written
 };
 
 /// Result of one pair, in the source frame.

@@ -64,13 +64,25 @@ OverlapModel overlapModelFromName(std::string_view name) {
                                 "'; valid models: amperian, charge, exterior");
 }
 
+ForceForm forceFormFromName(std::string_view name) {
+    if (name == "split") return ForceForm::split;
+    if (name == "surfaceCharge") return ForceForm::surfaceCharge;
+    throw std::invalid_argument("unknown force form '" + std::string(name) +
+                                "'; valid forms: split, surfaceCharge");
+}
+
 Wrench interactionWrench(const PolyhedronTables& source, const Vec3& Ms,
                          std::span<const Vec3> points, std::span<const double> weights,
                          std::span<const Vec3> normals, const Vec3& Mt, const Vec3& rc,
-                         OverlapModel model) {
+                         OverlapModel model, ForceForm form) {
+    const bool sigma = form == ForceForm::surfaceCharge;
+    if (sigma && model == OverlapModel::amperian)
+        throw std::invalid_argument("mbm::interactionWrench: the surfaceCharge form needs the charge or "
+                                    "exterior overlap model (amperian's field is B, not a potential's gradient)");
     const SampleField& s = fieldAtSamples(source, Ms, points, weights, normals, true);
     const bool charge = model == OverlapModel::charge, exterior = model == OverlapModel::exterior;
     Vec3 F = Vec3::Zero(), Tm = Vec3::Zero();
+    Vec3 Tall = Vec3::Zero(); // surfaceCharge: sum w sigma (r - rc) x field, the whole torque
     Vec3 normalPart = Vec3::Zero(); // exterior: int over the overlap of (Ms . n_s) n_s dV
     Vec3 nxA = Vec3::Zero();  // sum w n x (Ms x S)  (amperian: (4 pi/mu0) int B dV)
     Vec3 phiN = Vec3::Zero(); // sum w (Ms . S) n   (charge: int H dV = -phiN / (4 pi))
@@ -90,11 +102,20 @@ Wrench interactionWrench(const PolyhedronTables& source, const Vec3& Ms,
             // The overlap volume below this face, from div X = 1 with
             // X = ((r - r_face) . n_s) n_s, which vanishes on the face's plane:
             // V = sum over the target's samples inside of w (n_s . r - offset)(n_s . n).
-            normalPart += (w * s.f[k] * (ns.dot(points[k]) - face.offset) * ns.dot(n)) * g;
+            // surfaceCharge: the same volume integral as the surface charge in the
+            // potential psi of g, sum w (M_t . n) f psi, psi = -(n_s . r - offset) Ms . n_s.
+            const double depth = w * s.f[k] * (ns.dot(points[k]) - face.offset);
+            normalPart += sigma ? Vec3((depth * Ms.dot(ns)) * n) : Vec3((depth * ns.dot(n)) * g);
         }
-        const double wMB = w * Mt.dot(field);
-        F += wMB * n;                            // Eq. 16
-        Tm += wMB * (points[k] - rc).cross(n);   // Eq. 18: -n x (M.B)(r - rc)
+        if (sigma) {
+            const double wSigma = w * Mt.dot(n);
+            F += wSigma * field;
+            Tall += wSigma * (points[k] - rc).cross(field);
+        } else {
+            const double wMB = w * Mt.dot(field);
+            F += wMB * n;                          // Eq. 16
+            Tm += wMB * (points[k] - rc).cross(n); // Eq. 18: -n x (M.B)(r - rc)
+        }
         if (charge || exterior) {
             const double wPhi = w * Ms.dot(s.S[k]);
             phiN += wPhi * n;
@@ -111,6 +132,7 @@ Wrench interactionWrench(const PolyhedronTables& source, const Vec3& Ms,
         out.torque = -(mu0 / kFourPi) * Mt.cross(phiN);
         out.energy = (mu0 / kFourPi) * chargeEnergy;
         out.fieldIntegral = -(mu0 / kFourPi) * phiN; // mu0 int H dV
+        if (sigma) out.mechanicalTorque = Tall - out.torque;
     } else if (exterior) {
         // int B_ext dV = mu0 int H dV + mu0 int_overlap (Ms . n_s) n_s dV: the charge
         // model's split (every sample's own term, so blocks of samples add up) and
@@ -119,6 +141,7 @@ Wrench interactionWrench(const PolyhedronTables& source, const Vec3& Ms,
         out.torque = Mt.cross(integral);
         out.energy = -Mt.dot(integral);
         out.fieldIntegral = integral;
+        if (sigma) out.mechanicalTorque = Tall - out.torque;
     } else {
         nxA *= mu0 / kFourPi;       // sum w n x A = int B dV
         out.torque = Mt.cross(nxA); // Eq. 17

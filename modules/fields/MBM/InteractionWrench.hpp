@@ -45,6 +45,20 @@
 //   F = -grad U with U = U_charge - mu0 (M_t . n_s)(M_s . n_s) V_overlap; across an edge an
 //   approximation of the order of the overlap (docs/physics.md#overlap-models).
 // All models agree while the bodies do not overlap.
+//
+// form: surfaceCharge (charge and exterior only; docs/physics.md#force-form)
+//   The same integrals as the target's surface charge sigma = M_t . n in the field the
+//   model puts on the samples (mu0 H, or B_ext):
+//   F   = sum_k w_k (M_t . n_k) field_k
+//   T + Tm = sum_k w_k (M_t . n_k) (r_k - r_c) x field_k      (T as above, Tm the rest)
+//   U   = sum_k w_k (M_t . n_k) mu0 (phi_k + f_k psi_k),  psi = -(M_s . n_s)(n_s . r - o_s)
+//   (psi: exterior only, the potential of the normal part it adds inside the source;
+//   zero on the face's plane, so U is continuous). For samples that move rigidly with
+//   the target, F = -grad U and T + Tm = -dU/dtheta hold for ANY rule, however coarse,
+//   because field = -mu0 grad(phi + f psi); the split form (Eqs. 16-18) holds them only
+//   to the rule's accuracy: with one sample per triangle at a contact its force is
+//   not a gradient, and the bodies gain or lose energy there. Both forms converge to
+//   the same wrench as the rule is refined.
 #pragma once
 
 #include "PolyhedronField.hpp"
@@ -67,6 +81,15 @@ enum class OverlapModel {
 /// Parses "charge", "amperian" or "exterior"; throws std::invalid_argument listing the valid names.
 OverlapModel overlapModelFromName(std::string_view name);
 
+/// How the boundary integrals are written (see the file comment).
+enum class ForceForm {
+    split,        ///< Eqs. 16-18: (M_t . field) n, torque = couple + mechanical; the default
+    surfaceCharge ///< (M_t . n) field: the exact gradient of the sampled energy (charge, exterior)
+};
+
+/// Parses "split" or "surfaceCharge"; throws std::invalid_argument listing the valid names.
+ForceForm forceFormFromName(std::string_view name);
+
 /// Force and torques on the target (mag::Wrench), here in the source frame.
 using mag::Wrench;
 
@@ -74,10 +97,11 @@ using mag::Wrench;
 /// source, Ms: the source's tables and magnetization (A/m, source frame);
 /// points, weights, normals: the target's boundary samples in the source frame;
 /// Mt, rc: the target's magnetization (A/m) and centre of mass (m), source frame.
+/// form surfaceCharge with the amperian model throws std::invalid_argument.
 Wrench interactionWrench(const PolyhedronTables& source, const Vec3& Ms,
                          std::span<const Vec3> points, std::span<const double> weights,
                          std::span<const Vec3> normals, const Vec3& Mt, const Vec3& rc,
-                         OverlapModel model);
+                         OverlapModel model, ForceForm form = ForceForm::split);
 
 /// Energy-consistent quantities of the pair (both models at once, one field pass):
 /// F_model = -grad U_model and (T + Tm)_model = -dU_model/dtheta.

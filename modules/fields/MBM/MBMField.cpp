@@ -65,9 +65,15 @@ public:
             n_ = q.get<int>("n", 10);
             if (n_ < 1 || n_ > 100) q.fail("n", "quadrature n must be 1..100 (points per face edge)");
         }
+        formName_ = q.getWord("form", {"split", "surfaceCharge"}, "split");
+        form_ = mbm::forceFormFromName(formName_);
+        adaptiveSettings_.form = form_;
         q.reportUnused();
         overlapName_ = d.getWord("overlap", {"charge", "amperian", "exterior"}, "charge");
         overlap_ = mbm::overlapModelFromName(overlapName_);
+        if (form_ == mbm::ForceForm::surfaceCharge && overlap_ == mbm::OverlapModel::amperian)
+            q.fail("form", "form surfaceCharge needs overlap: charge or exterior (the amperian field B is not "
+                           "the gradient of a potential; docs/physics.md#force-form)");
     }
 
     void evaluate(const Body& source, std::span<const Vec3> points, std::span<Vec3> B, std::span<Vec3> A,
@@ -110,7 +116,7 @@ public:
         auto block = [&](std::size_t b) {
             const std::size_t begin = b * kSampleBlock, count = std::min(kSampleBlock, n - begin);
             return mbm::interactionWrench(src.tables, source.magnetizationBody, P.subspan(begin, count),
-                                          W.subspan(begin, count), N.subspan(begin, count), Mt, rc, overlap_);
+                                          W.subspan(begin, count), N.subspan(begin, count), Mt, rc, overlap_, form_);
         };
         Wrench w;
         if (blocks <= 1) {
@@ -157,6 +163,7 @@ public:
         s << "MBM (quadrature " << ruleName_;
         if (adaptive_) s << " tolerance=" << adaptiveSettings_.tolerance << " order=" << adaptiveSettings_.order;
         else s << " n=" << n_;
+        if (form_ != mbm::ForceForm::split) s << " form=" << formName_;
         s << ", overlap " << overlapName_ << ")";
         return s.str();
     }
@@ -230,12 +237,13 @@ private:
         }
     }
 
-    std::string ruleName_, overlapName_;
+    std::string ruleName_, overlapName_, formName_;
     mbm::QuadratureRule rule_ = mbm::QuadratureRule::gauss;
     int n_ = 10;
     bool adaptive_ = true;
     mbm::AdaptiveSettings adaptiveSettings_;
     mbm::OverlapModel overlap_ = mbm::OverlapModel::charge;
+    mbm::ForceForm form_ = mbm::ForceForm::split;
     mutable std::mutex mutex_;
     mutable std::atomic<std::uint64_t> samples_{0}, pairs_{0}, capped_{0}, maxSamples_{0};
     mutable std::atomic<std::uint64_t> minSamples_{UINT64_MAX};
@@ -262,6 +270,10 @@ const TypeDoc kDoc{
      {"quadrature.maxSamples", "-",
       "adaptive: samples per pair; beyond it the pair keeps its estimate (counted as capped)"},
      {"quadrature.n", "-", "regular, gauss: points per face edge, 1..100"},
+     {"quadrature.form", "-",
+      "split: the paper's Eqs. 16-18, (M . B) n; surfaceCharge: the target's surface charge (M . n)\n"
+      "in the field, the exact gradient of the sampled energy for any rule (charge, exterior;\n"
+      "docs/physics.md#force-form)"},
      {"overlap", "-",
       "charge: Akoun-Yonnet, pushes overlapping magnets apart; amperian: the energy force;\n"
       "exterior: the field just outside the nearest source face continued into the overlap, so\n"
