@@ -804,9 +804,18 @@ private:
         contacts_.clear();
         for (int i = 0; i < n; ++i) {
             const dContactGeom& c = buffer_[i].geom;
-            contacts_.push_back({Vec3(c.pos[0], c.pos[1], c.pos[2]), Vec3(c.normal[0], c.normal[1], c.normal[2]),
-                                 c.depth, i});
+            const Vec3 normal(c.normal[0], c.normal[1], c.normal[2]), position(c.pos[0], c.pos[1], c.pos[2]);
+            // libccd returns a zero normal for a convex shape touching another at
+            // zero depth (Fig. 8: a clip's piece on the magnet's box, 4e-17 m);
+            // a contact row without a direction makes the LCP's solution NaN.
+            // There is nothing to push along: dropped, counted.
+            if (!(std::abs(normal.norm() - 1) < 1e-6) || !position.allFinite() || !std::isfinite(c.depth)) {
+                ++stats_.contactsDropped;
+                continue;
+            }
+            contacts_.push_back({position, normal, c.depth, i});
         }
+        if (contacts_.empty()) return;
         const auto* e1 = static_cast<const Piece*>(dGeomGetData(g1));
         const auto* e2 = static_cast<const Piece*>(dGeomGetData(g2));
         const bool mesh = (e1 && e1->collision->type == CollisionShape::Type::trimesh) ||
