@@ -242,6 +242,31 @@ TEST_CASE("a non-finite wrench stops the run naming the body and step", "[solver
     CHECK_FALSE(std::filesystem::exists(c.path("0/bodies.yaml")));
 }
 
+TEST_CASE("a rigid-body step that fails names the step and writes the last good state", "[solver][badInput]") {
+    // An engine can give up inside its step (ODE's internal checks: a contact
+    // without a normal stopped a Fig. 8 run in its quaternion normalization,
+    // with no time and no state to look at). The test backend fails in its 4th
+    // step after setting the dynamic bodies' velocity to 1000 m/s, as a step
+    // half done can; no field, no gravity: nothing moves before.
+    magtest::TempCase c;
+    fallingCubes(c, "free", 0.01,
+                 "libs: [" + magtest::testPluginDir() + "/libmagTestField.so, " + magtest::testPluginDir() +
+                     "/libmagFailingBackend.so]\n");
+    c.write("system/magSchemes.yaml", "field: {type: testUniformField, B0: [0, 0, 0]}\n");
+    c.write("constant/rigidBody.yaml", "type: testFailingBackend\nfailAtStep: 4\n");
+    const int rc = runFoam(c.dir());
+    CHECK(rc == 1);
+    const std::string log = slurp(c.path("log.run"));
+    CHECK_THAT(log, Catch::Matchers::Contains("the rigid-body step 4 (t = 0.003 to 0.004 s) failed: test backend "
+                                              "failure in its step 4; last good state written to 0.003/"));
+    std::vector<mag::Body> bodies(2);
+    bodies[0].name = "bottom", bodies[1].name = "top";
+    const mag::RestartState s = mag::readState(c.path("0.003/bodies.yaml"), bodies);
+    CHECK(s.step == 3);
+    CHECK(bodies[1].velocity.norm() == 0.0); // the state before the step, not the half-done one
+    CHECK(slurp(c.path("postProcessing/bodies.csv")).find("1000") == std::string::npos);
+}
+
 TEST_CASE("a wrench that turns non-finite mid-run: the last good state is written, nothing non-finite",
           "[solver][badInput]") {
     magtest::TempCase c;

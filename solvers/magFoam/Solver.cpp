@@ -193,18 +193,14 @@ void run(Case& c, const RunOptions& options) {
 
         // The rigid-body step under those wrenches.
         stats.start(RunStatistics::Phase::rigidBody);
-        if (!firstNonFinite(bodies, &wrenches)) {
-            if (control.implicitTorque) backend->setTiltStiffness(tiltStiffnesses(bodies, wrenches));
-            backend->step(bodies, wrenches, dt);
-        }
-        stats.stepDone();
-
-        if (const Body* bad = firstNonFinite(bodies, &wrenches)) {
+        // The last good state (before this step), written for a look and a
+        // restart when the step fails; the models hold the bad step's state:
+        // bodies.yaml alone. With a non-finite wrench the good state's results
+        // cannot be written either (nothing non-finite is), but its restart
+        // state can.
+        auto writeLastGood = [&] {
             std::vector<Body> good = bodies;
             for (std::size_t i = 0; i < good.size(); ++i) static_cast<BodyState&>(good[i]) = lastGood[i];
-            // The models hold the bad step's state: bodies.yaml alone. With a
-            // non-finite wrench the good state's results cannot be written
-            // either (nothing non-finite is), but its restart state can.
             std::string written = "last good state written to " + timeName(before) + "/";
             try {
                 write(good, before, step - 1, false);
@@ -212,6 +208,24 @@ void run(Case& c, const RunOptions& options) {
                 writer.writeStateOnly(before, step - 1, good);
                 written += " (its state only: its wrench is not finite)";
             }
+            return written;
+        };
+        if (!firstNonFinite(bodies, &wrenches)) {
+            if (control.implicitTorque) backend->setTiltStiffness(tiltStiffnesses(bodies, wrenches));
+            try {
+                backend->step(bodies, wrenches, dt);
+            } catch (const StateError& e) {
+                // The engine gave up (ODE's internal checks throw): the bodies
+                // may hold part of the step.
+                const std::string written = writeLastGood();
+                throw StateError(fmt::format("the rigid-body step {} (t = {:.9g} to {:.9g} s) failed: {}; {}", step,
+                                             before, t, e.what(), written));
+            }
+        }
+        stats.stepDone();
+
+        if (const Body* bad = firstNonFinite(bodies, &wrenches)) {
+            const std::string written = writeLastGood();
             throw StateError("non-finite state or wrench of body '" + bad->name + "' in step " +
                              std::to_string(step) + " (t = " + formatExact(t) + " s); " + written);
         }
