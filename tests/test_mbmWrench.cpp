@@ -784,7 +784,8 @@ TEST_CASE("overlap: the exterior force is the gradient of its energy", "[mbm][wr
 // each sample is -mu0 grad of a potential (phi, plus f psi for exterior). Checked with
 // the coarsest rule there is (one midpoint per face: 6 samples on the target box) on
 // a target lying flat on the source, 50 um into it (its bottom sample inside: the
-// exterior model's psi term), and 10 um above it. The split form (Eqs. 16-18) agrees
+// exterior model's psi term), and 1 um and 10 um above it; and edge on face, 1 um
+// above and 20 um into it. The split form (Eqs. 16-18) agrees
 // with -grad U only to the rule's accuracy: printed, and checked to be far off here
 // so that the check above would notice a form that is not a gradient.
 TEST_CASE("surfaceCharge form: the exact gradient of the sampled energy, however coarse the rule",
@@ -796,29 +797,42 @@ TEST_CASE("surfaceCharge form: the exact gradient of the sampled energy, however
     REQUIRE(q.points.size() == 6);
     const Eigen::Matrix3d R0 = Eigen::AngleAxisd(0.4, Vec3::UnitZ()).toRotationMatrix();
     const Vec3 Mtb = Vec3(0.3, -0.8, 0.5).normalized() * 1.1 * kMs; // body frame
-    for (const double depth : {50e-6, -10e-6}) {
-        const Vec3 c(0.0013, -0.0009, hs.z() + ht.z() - depth);
+    // Flat on the source's top face, and turned 0.25 rad about its x axis so
+    // that one edge meets the face (edge on face), `depth` into it.
+    const Eigen::Matrix3d R1 = R0 * Eigen::AngleAxisd(0.25, Vec3::UnitX()).toRotationMatrix();
+    auto lowest = [&](const Eigen::Matrix3d& R) { // of the target's corners, centre at 0
+        double z = 0;
+        for (int k = 0; k < 8; ++k)
+            z = std::min(z, (R * Vec3((k & 1 ? 1 : -1) * ht.x(), (k & 2 ? 1 : -1) * ht.y(), (k & 4 ? 1 : -1) * ht.z())).z());
+        return z;
+    };
+    struct Pose { Eigen::Matrix3d R; double depth; const char* name; };
+    for (const Pose& pose : {Pose{R0, 50e-6, "flat"}, Pose{R0, -1e-6, "flat"}, Pose{R0, -10e-6, "flat"},
+                             Pose{R1, -1e-6, "edge on face"}, Pose{R1, 20e-6, "edge on face"}}) {
+        const double depth = pose.depth;
+        const Eigen::Matrix3d& R = pose.R;
+        const Vec3 c(0.0013, -0.0009, hs.z() - lowest(R) - depth);
         for (OverlapModel model : {OverlapModel::charge, OverlapModel::exterior}) {
             for (ForceForm form : {ForceForm::surfaceCharge, ForceForm::split}) {
-                auto at = [&](const Eigen::Matrix3d& R, const Vec3& p) {
-                    const Samples s = place(q, R, p);
-                    return interactionWrench(src, Ms, s.p, s.w, s.n, R * Mtb, p, model, form);
+                auto at = [&](const Eigen::Matrix3d& Rt, const Vec3& p) {
+                    const Samples s = place(q, Rt, p);
+                    return interactionWrench(src, Ms, s.p, s.w, s.n, Rt * Mtb, p, model, form);
                 };
-                const Wrench w = at(R0, c);
+                const Wrench w = at(R, c);
                 Vec3 grad, dU;
                 const double h = 1e-7, a = 1e-6; // m, rad: no sample crosses a source face
                 for (int k = 0; k < 3; ++k) {
                     const Vec3 e = h * Vec3::Unit(k);
-                    grad[k] = (at(R0, c + e).energy - at(R0, c - e).energy) / (2 * h);
-                    const Eigen::Matrix3d Rp = Eigen::AngleAxisd(a, Vec3::Unit(k)).toRotationMatrix() * R0;
-                    const Eigen::Matrix3d Rm = Eigen::AngleAxisd(-a, Vec3::Unit(k)).toRotationMatrix() * R0;
+                    grad[k] = (at(R, c + e).energy - at(R, c - e).energy) / (2 * h);
+                    const Eigen::Matrix3d Rp = Eigen::AngleAxisd(a, Vec3::Unit(k)).toRotationMatrix() * R;
+                    const Eigen::Matrix3d Rm = Eigen::AngleAxisd(-a, Vec3::Unit(k)).toRotationMatrix() * R;
                     dU[k] = (at(Rp, c).energy - at(Rm, c).energy) / (2 * a);
                 }
                 const double ef = (w.force + grad).norm() / w.force.norm();
                 const double et = (w.totalTorque() + dU).norm() / w.totalTorque().norm();
-                std::printf("%s, %s, depth %g um: |F + grad U|/|F| = %.2e, |T + dU/dtheta|/|T| = %.2e\n",
+                std::printf("%s, %s, %s, depth %g um: |F + grad U|/|F| = %.2e, |T + dU/dtheta|/|T| = %.2e\n",
                             model == OverlapModel::charge ? "charge" : "exterior",
-                            form == ForceForm::split ? "split" : "surfaceCharge", depth * 1e6, ef, et);
+                            form == ForceForm::split ? "split" : "surfaceCharge", pose.name, depth * 1e6, ef, et);
                 if (form == ForceForm::surfaceCharge) {
                     // central differences: truncation (h/1 mm)^2 ~ 1e-8, rounding ~1e-10
                     CHECK(ef <= 1e-6);

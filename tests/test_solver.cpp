@@ -10,6 +10,7 @@
 #include <csignal>
 #include <cstdlib>
 #include <fstream>
+#include <initializer_list>
 #include <regex>
 #include <sstream>
 #include <sys/wait.h>
@@ -30,6 +31,16 @@ void fallingCubes(magtest::TempCase& c, const std::string& backend, double endTi
     c.write("system/controlDict.yaml", "endTime: " + std::to_string(endTime) +
                                            "\ndeltaT: 0.001\nwriteInterval: 0.005\n" + extra);
     c.write("constant/rigidBody.yaml", "type: " + backend + "\ngravity: [0, 0, -9.81]\n");
+}
+
+// fallingCubes on the free backend with the test plugins `libs` (libmag<name>.so
+// of the test plugin folder) loaded and the uniform test field with `fieldKeys`.
+void testPluginCubes(magtest::TempCase& c, const std::string& fieldKeys,
+                     std::initializer_list<const char*> libs = {"TestField"}) {
+    std::string list;
+    for (const char* lib : libs) list += (list.empty() ? "" : ", ") + magtest::testPluginDir() + "/libmag" + lib + ".so";
+    fallingCubes(c, "free", 0.01, "libs: [" + list + "]\n");
+    c.write("system/magSchemes.yaml", "field: {type: testUniformField, B0: [0, 0, 0]" + fieldKeys + "}\n");
 }
 
 struct State {
@@ -228,8 +239,7 @@ TEST_CASE("SIGTERM writes the current state and exits 0", "[solver]") {
 
 TEST_CASE("a non-finite wrench stops the run naming the body and step", "[solver][badInput]") {
     magtest::TempCase c;
-    fallingCubes(c, "free", 0.01, "libs: [" + magtest::testPluginDir() + "/libmagTestField.so]\n");
-    c.write("system/magSchemes.yaml", "field: {type: testUniformField, B0: [0, 0, 0], nanForce: true}\n");
+    testPluginCubes(c, ", nanForce: true");
     const int rc = runFoam(c.dir());
     CHECK(rc == 1);
     const std::string log = slurp(c.path("log.run"));
@@ -249,10 +259,7 @@ TEST_CASE("a rigid-body step that fails names the step and writes the last good 
     // step after setting the dynamic bodies' velocity to 1000 m/s, as a step
     // half done can; no field, no gravity: nothing moves before.
     magtest::TempCase c;
-    fallingCubes(c, "free", 0.01,
-                 "libs: [" + magtest::testPluginDir() + "/libmagTestField.so, " + magtest::testPluginDir() +
-                     "/libmagFailingBackend.so]\n");
-    c.write("system/magSchemes.yaml", "field: {type: testUniformField, B0: [0, 0, 0]}\n");
+    testPluginCubes(c, "", {"TestField", "FailingBackend"});
     c.write("constant/rigidBody.yaml", "type: testFailingBackend\nfailAtStep: 4\n");
     const int rc = runFoam(c.dir());
     CHECK(rc == 1);
@@ -270,10 +277,9 @@ TEST_CASE("a rigid-body step that fails names the step and writes the last good 
 TEST_CASE("a wrench that turns non-finite mid-run: the last good state is written, nothing non-finite",
           "[solver][badInput]") {
     magtest::TempCase c;
-    fallingCubes(c, "free", 0.01, "libs: [" + magtest::testPluginDir() + "/libmagTestField.so]\n");
     // The top cube falls freely (no magnetic force); after 6 steps of 1 ms it
     // is faster than 0.05 m/s and the field's force on it turns NaN.
-    c.write("system/magSchemes.yaml", "field: {type: testUniformField, B0: [0, 0, 0], nanAboveSpeed: 0.05}\n");
+    testPluginCubes(c, ", nanAboveSpeed: 0.05");
     const int rc = runFoam(c.dir());
     CHECK(rc == 1);
     const std::string log = slurp(c.path("log.run"));
