@@ -69,7 +69,7 @@ std::vector<Wrench> MagneticSystem::partWrenches(const std::vector<Body>& bodies
     field_->addWrenches(bodies, active, skipFixedTargets, out);
     if (applied_->active())
         for (std::size_t i : active)
-            if (!(skipFixedTargets && bodies[i].fixed)) out[i] += applied_->wrench(bodies[i]);
+            if (!(skipFixedTargets && FieldEvaluator::heldConstant(bodies[i]))) out[i] += applied_->wrench(bodies[i]);
     return out;
 }
 
