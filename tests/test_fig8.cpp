@@ -2,7 +2,7 @@
 // paperclips, hybrid MBM, ODE) with its LLG induction and its demag variant,
 // shortened: the magnet and five clips placed close to it, 0.12 s. Every clip
 // must end attached to the magnet or to another clip, the magnetizations must
-// converge in every step, and (demag) the field and contacts must not create
+// converge in every step, and (both) the field and contacts must not create
 // energy.
 #include "caseFixture.hpp"
 
@@ -80,15 +80,17 @@ TEST_CASE("fig8 short: paperclips end attached, induction converges every step, 
         CHECK(converged == rows);
     }
 
-    // Energy (demag: the induced forces are an energy's gradient; LLG's are
-    // not, and with the true start energy it gains 6.7e-5 J here, measured):
-    // the total (kinetic + gravitational + magnetic) never rises above
-    // its start by more than ODE's capped push-out of a penetration can add,
-    // m (0.1 m/s)^2 / 2 per clip (m = 0.51 g). Kinetic energy bounded after
-    // contact: in the second half of the run it never exceeds the peak of the
-    // first half (impacts). It does not go to zero: clips resting on other
-    // clips are pushed out of trimesh penetrations at up to the 0.1 m/s cap
-    // (see the case README).
+    // Energy (demag: the induced forces are an energy's gradient; so are the
+    // case's LLG ones with `average: permanent` as far as the magnet goes, the
+    // clips' fields on each other taken at their centres; with the paper's
+    // centre field LLG gained 6.7e-5 J here, measured): the total (kinetic +
+    // gravitational + magnetic) never rises above its start by more than ODE's
+    // capped push-out of a penetration can add, m (0.1 m/s)^2 / 2 per clip
+    // (m = 0.51 g). Kinetic energy bounded after contact: after the impacts
+    // it never exceeds their peak. The last impact is clip3's, pulled in from
+    // across the far pole: it lands at 0.060-0.066 s (measured, LLG), so the
+    // impacts are taken as the first 80 ms. It does not go to zero: the run
+    // has fixed 0.1 ms steps and no sleeping.
     std::ifstream e(c.path("postProcessing/energy.csv"));
     std::string line;
     std::getline(e, line);
@@ -99,11 +101,11 @@ TEST_CASE("fig8 short: paperclips end attached, induction converges every step, 
         REQUIRE(std::isfinite(tot));
         if (std::isnan(E0)) E0 = tot;
         maxExcess = std::max(maxExcess, tot - E0);
-        (t <= 0.06 ? peakFirst : peakSecond) = std::max(t <= 0.06 ? peakFirst : peakSecond, kin);
+        (t <= 0.08 ? peakFirst : peakSecond) = std::max(t <= 0.08 ? peakFirst : peakSecond, kin);
     }
     CHECK(peakFirst > 0);
     CHECK(peakSecond <= peakFirst);
-    if (demag) CHECK(maxExcess <= 5 * 0.5 * 0.51e-3 * 0.1 * 0.1); // measured: never above the start
+    CHECK(maxExcess <= 5 * 0.5 * 0.51e-3 * 0.1 * 0.1); // measured: never above the start (both)
 
     // Attached: each clip within 1 mm of the magnet or another clip.
     mag::Case cs = mag::Case::read(c.dir());

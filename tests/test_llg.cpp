@@ -344,6 +344,11 @@ TEST_CASE("LLG: keys are read, checked, and misspellings rejected", "[LLG]") {
     CHECK_THROWS_AS(llg("maxRotation: 2\n"), mag::InputError);
     CHECK_THROWS_AS(llg("gamma: 0\n"), mag::InputError);
     CHECK_THROWS_WITH(llg("tolerence: 1e-6\n"), Contains("tolerance"));
+    CHECK_THAT(model->describe(), Contains("average none"));
+    CHECK_THAT(llg("average: permanent\n")->describe(), Contains("average permanent"));
+    CHECK_THAT(llg("average: all\n")->describe(), Contains("average all"));
+    CHECK_THROWS_WITH(llg("average: centre\n"), Contains("average") && Contains("none") && Contains("permanent") &&
+                                                     Contains("all") && Contains("'centre'"));
 
     // Explicit-like stepping (relaxation 1) reaches the same equilibrium, slowly.
     auto slow = llg("relaxation: 1\nmaxIterations: 5000\n");

@@ -14,7 +14,8 @@
 // Model. A soft body carries two sub-magnetizations M1, M2 of length Ms; its
 // magnetization is M = (M1 + M2)/2, so 0 <= |M| <= Ms. Both feel
 //   H_eff = B/mu0 - D M,   D = I/k                                            (Eq. 19)
-// where B is the field of every OTHER magnetized body at the body's centre of mass,
+// where B is the field of every OTHER magnetized body at the body's centre of mass
+// (the paper's; `average` below takes it averaged over the body instead),
 // and follow LLG in pseudo-time,
 //   dM_i/dt = -gamma/(1 + alpha^2) [M_i x H_eff + (alpha/Ms) M_i x (M_i x H_eff)] (Eq. 20)
 // (Eq. 20 as printed has alpha without 1/Ms, which is not dimensionless for M_i in A/m;
@@ -75,6 +76,16 @@
 //    and read back at a restart, so that the restarted run starts every soft body
 //    from the same pair as the uninterrupted one (bit for bit; without the file
 //    the pairs are derived from the written magnetization as above).
+//  - average: none | permanent | all (docs/physics.md#induction). The centre
+//    field is the body's mean only for a sphere, so the paper's induced force is
+//    not the gradient of an energy and a clip beside a magnet gains energy. With
+//    `permanent`, B from permanent bodies and the applied field is their field
+//    integral as the pair energy sees it (FieldEvaluator::fieldIntegral, the
+//    demag model's I / V: one call per such pair, with the target's samples);
+//    with `all` the soft-soft maps too (three calls per soft pair, like demag:
+//    Fig. 8 4.4x the cost of a step). M then minimizes -M.I + mu0 V |M|^2/(2k)
+//    (Eq. 19's energy) over |M| <= Ms, stationary for the energy the forces
+//    derive from, and sceneEnergy counts that energy.
 //  - Pseudo-time: only gamma dt enters Eq. 20 and the step is chosen in units of s, so
 //    gamma changes neither the result nor the iterations; the debug log line of each
 //    call gives the pseudo-time reached in seconds, t = s (1 + alpha^2)/(gamma Ms).
@@ -330,6 +341,16 @@ public:
             d.fail("maxRotation", "LLG maxRotation must be in (0, pi/2] rad");
         gamma_ = d.get<double>("gamma", mu0 * 1.76086e11);
         if (!(gamma_ > 0)) d.fail("gamma", "LLG gamma must be > 0 (gyromagnetic ratio, m/(A s))");
+        const std::string average = d.get<std::string>("average", "none");
+        if (average == "none")
+            average_ = Average::none;
+        else if (average == "permanent")
+            average_ = Average::permanent;
+        else if (average == "all")
+            average_ = Average::all;
+        else
+            d.fail("average", "LLG average must be one of: none (the paper's field at the centre), permanent, all; "
+                              "got '" + average + "'");
     }
 
     using InductionModel::converge;
@@ -346,8 +367,15 @@ public:
         // Fields at the soft bodies' centres: permanent part and soft-to-soft maps.
         std::vector<Vec3> centres(n);
         for (std::size_t a = 0; a < n; ++a) centres[a] = bodies[soft[a]].position;
-        const std::vector<Vec3> Bfixed = permanentField(bodies, field, applied, centres);
-        const std::vector<Mat3> G = softMaps(bodies, soft, field);  // G[b*n + a]: B at b per M_a (world)
+        std::vector<Vec3> Bfixed;
+        std::vector<Mat3> G; // G[b*n + a]: B at b per M_a (world)
+        if (average_ == Average::none) {
+            Bfixed = permanentField(bodies, field, applied, centres);
+            G = softMaps(bodies, soft, field);
+        } else {
+            averagedFields(bodies, soft, field, applied, average_ == Average::all, Bfixed, G);
+            if (average_ == Average::permanent) G = softMaps(bodies, soft, field);
+        }
 
         // Pairs (world frame) and state: stored pair, else from magnetizationBody.
         std::vector<Vec3> m1(n), m2(n), M(n);
@@ -420,11 +448,32 @@ public:
     }
 
     std::string describe() const override {
-        char text[200];
+        static const char* const averages[] = {"none: fields at the centres", "permanent: the permanent sources' "
+                                               "and the applied field averaged, the soft bodies' at the centres",
+                                               "all: fields averaged as the energy sees them"};
+        char text[300];
         std::snprintf(text, sizeof text,
-                      "LLG (tolerance %g, maxIterations %d, relaxation %g, maxRotation %g rad, gamma %g m/(A s))",
-                      set_.tolerance, maxIterations_, set_.relaxation, set_.maxRotation, gamma_);
+                      "LLG (tolerance %g, maxIterations %d, relaxation %g, maxRotation %g rad, gamma %g m/(A s), "
+                      "average %s)",
+                      set_.tolerance, maxIterations_, set_.relaxation, set_.maxRotation, gamma_,
+                      averages[static_cast<int>(average_)]);
         return text;
+    }
+
+    // With averaged fields (average: permanent or all) LLG's equilibrium
+    // minimizes e V mu0 Ms^2 = -M . I + mu0 V |M|^2 / (2k) (Eq. 19's energy)
+    // for the field integral I the pair energies derive from, so the scene's
+    // energy counts every pair once plus each soft body's own mu0 V |M|^2/(2k),
+    // as demag does (docs/physics.md#energy). At the centre (the paper's), the
+    // default count: the halved energy of a linear induced moment.
+    double sceneEnergy(const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches) const override {
+        if (average_ == Average::none) return InductionModel::sceneEnergy(bodies, wrenches);
+        double e = 0;
+        for (const Wrench& w : wrenches) e += 0.5 * w.energy + w.ownEnergy;
+        for (const Body& b : bodies)
+            if (b.soft())
+                e += mu0 * b.shape->volume * b.magnetizationBody.squaredNorm() / (2 * softParams(b).k);
+        return e;
     }
 
     // The stored pairs, in the order of the bodies (Restart above).
@@ -536,6 +585,51 @@ private:
         return G;
     }
 
+    // Bfixed and (with `soft`) G as the pair energies see them (the field
+    // integral I = -dU/dM over the body's volume, FieldEvaluator::fieldIntegral,
+    // in the orientation addWrenches() evaluates the pair), as the demag model
+    // takes them: then M is stationary for the energy the forces derive from.
+    static void averagedFields(const std::vector<Body>& bodies, const std::vector<std::size_t>& soft,
+                               const FieldEvaluator& field, const AppliedField& applied, bool softToo,
+                               std::vector<Vec3>& Bfixed, std::vector<Mat3>& G) {
+        const std::size_t n = soft.size();
+        Bfixed.assign(n, Vec3::Zero());
+        G.assign(n * n, Mat3::Zero());
+        std::vector<int> slot(bodies.size(), -1);
+        for (std::size_t a = 0; a < n; ++a) slot[soft[a]] = static_cast<int>(a);
+        auto unitMagnetized = [](Body b, int c) {
+            b.magnetizationBody = b.orientation.conjugate() * Vec3::Unit(c);
+            return b;
+        };
+        if (applied.active())
+            for (std::size_t a = 0; a < n; ++a)
+                for (int c = 0; c < 3; ++c) Bfixed[a][c] -= applied.wrench(unitMagnetized(bodies[soft[a]], c)).ownEnergy;
+        const std::span<const Body> all(bodies);
+        for (std::size_t i = 0; i < bodies.size(); ++i)
+            for (std::size_t j = i + 1; j < bodies.size(); ++j) {
+                const BodyPair p = FieldEvaluator::orientedPair(all, i, j);
+                const Body &s = bodies[p.source], &t = bodies[p.target];
+                const int ss = slot[p.source], ts = slot[p.target];
+                if (ss < 0 && ts < 0) continue;
+                if (FieldEvaluator::sameRigidBody(s, t)) continue;
+                if (ss >= 0 && ts >= 0) {
+                    if (!softToo) continue;
+                    Mat3 K;
+                    for (int c = 0; c < 3; ++c) K.col(c) = field.fieldIntegral(unitMagnetized(s, c), t);
+                    G[ts * n + ss] = K, G[ss * n + ts] = K.transpose();
+                } else if (ts >= 0) {
+                    if (s.magnetizationBody.squaredNorm() > 0) Bfixed[ts] += field.fieldIntegral(s, t);
+                } else if (t.magnetizationBody.squaredNorm() > 0) {
+                    for (int c = 0; c < 3; ++c) Bfixed[ss][c] -= field.interaction(unitMagnetized(s, c), t).energy;
+                }
+            }
+        for (std::size_t a = 0; a < n; ++a) {
+            const double V = bodies[soft[a]].shape->volume;
+            Bfixed[a] /= V;
+            for (std::size_t b = 0; b < n; ++b) G[a * n + b] /= V;
+        }
+    }
+
     static Vec3 fieldAt(std::size_t b, const std::vector<Vec3>& Bfixed, const std::vector<Mat3>& G,
                         const std::vector<Vec3>& M) {
         const std::size_t n = Bfixed.size();
@@ -545,7 +639,9 @@ private:
         return B;
     }
 
+    enum class Average { none, permanent, all };
     StepSettings set_{};
+    Average average_ = Average::none;
     int maxIterations_ = 500;
     double gamma_ = 0;
     std::map<std::string, Pair> state_;
@@ -555,7 +651,8 @@ const TypeDoc kDoc{
     "The paper's induction (Sec. 4.3): LLG relaxation of soft bodies' magnetization.\n"
     "Each soft body's magnetization relaxes by Landau-Lifshitz-Gilbert (Eqs. 19, 20) in\n"
     "pseudo-time to M = k B/mu0 (Eq. 2, saturating at Ms), with B the other bodies' field at\n"
-    "its centre of mass. Materials: {model: soft, k, Js, density, alpha}.",
+    "its centre of mass, or averaged over it as the energy sees it (average). Materials:\n"
+    "{model: soft, k, Js, density, alpha}.",
     {"type: LLG\ntolerance: 1e-6\nmaxIterations: 500\n"},
     {{"tolerance", "-",
       "converged when no body's magnetization changed by more than tolerance * Ms in the last\n"
@@ -565,7 +662,13 @@ const TypeDoc kDoc{
       "largest pseudo-time step per sweep in units of the body's fastest relaxation time, > 0;\n"
       "1e6 and up: Newton-like (fast); about 1: close to the explicit path of Eq. 20 (slow)"},
      {"maxRotation", "rad", "largest rotation of a sub-magnetization in one sweep (trust region), (0, pi/2]"},
-     {"gamma", "m/(A s)", "gyromagnetic ratio of Eq. 20 (mu0 * 1.76086e11); sets only the pseudo-time unit"}}};
+     {"gamma", "m/(A s)", "gyromagnetic ratio of Eq. 20 (mu0 * 1.76086e11); sets only the pseudo-time unit"},
+     {"average", "-",
+      "the field B each soft body relaxes in: none (the paper's: every source's field at the\n"
+      "centre of mass), permanent (the permanent sources' and the applied field averaged over\n"
+      "the body as the pair energies see them, the soft bodies' at the centre; about as cheap),\n"
+      "all (every field averaged: the induced forces conserve energy; three evaluator calls\n"
+      "per pair of soft bodies)"}}};
 
 const InductionModel::Add<LLGInduction> addLLG("LLG", kDoc);
 
