@@ -48,6 +48,16 @@ Vec3 FieldEvaluator::fieldIntegral(const Body& source, const Body& target) const
     return integral;
 }
 
+Mat3 FieldEvaluator::fieldIntegralMap(const Body& source, const Body& target) const {
+    Body unit = source;
+    Mat3 K;
+    for (int c = 0; c < 3; ++c) {
+        unit.magnetizationBody = source.orientation.conjugate() * Vec3::Unit(c);
+        K.col(c) = fieldIntegral(unit, target);
+    }
+    return K;
+}
+
 void FieldEvaluator::PairChunks::finish() {
     f_.addPairWrenches(bodies_, pairs_, out_);
     pairs_.clear();

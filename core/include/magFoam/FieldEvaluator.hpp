@@ -94,6 +94,14 @@ public:
     // evaluators here read Wrench::fieldIntegral of one interaction() instead.
     virtual Vec3 fieldIntegral(const Body& source, const Body& target) const;
 
+    // fieldIntegral() per unit source magnetization: K (T m^3 per A/m, world
+    // frame) with fieldIntegral = K M_s for the source's world magnetization
+    // M_s, the poses as given (fieldIntegral is linear in M_s). Induction
+    // models take a soft source's map from it (docs/physics.md#demag). The
+    // default: three fieldIntegral() calls with unit source magnetizations;
+    // MBM's regular rule reads it off one pass of the geometric field.
+    virtual Mat3 fieldIntegralMap(const Body& source, const Body& target) const;
+
     // One line for logs: type and main settings.
     virtual std::string describe() const = 0;
 

@@ -151,6 +151,38 @@ Wrench interactionWrench(const PolyhedronTables& source, const Vec3& Ms,
     return out;
 }
 
+Mat3 fieldIntegralMap(const PolyhedronTables& source, std::span<const Vec3> points,
+                      std::span<const double> weights, std::span<const Vec3> normals, OverlapModel model,
+                      ForceForm form) {
+    // S and f do not depend on Ms; the kernel is asked for them alone.
+    const SampleField& s = fieldAtSamples(source, Vec3::UnitZ(), points, weights, normals, false);
+    const bool exterior = model == OverlapModel::exterior;
+    Mat3 phiN = Mat3::Zero();       // sum w n S^T: phiN (interactionWrench) = phiN Ms
+    Mat3 normalPart = Mat3::Zero(); // exterior: normalPart = this Ms
+    Mat3 nxA = Mat3::Zero();        // sum w [(n . S) I - S n^T]: n x (Ms x S) = this Ms
+    for (std::size_t k = 0; k < points.size(); ++k) {
+        const double w = weights[k];
+        const Vec3& n = normals[k];
+        if (model == OverlapModel::amperian) {
+            nxA += w * (n.dot(s.S[k]) * Mat3::Identity() - s.S[k] * n.transpose());
+            continue;
+        }
+        phiN += w * n * s.S[k].transpose();
+        if (exterior && s.f[k] > kInsideFloor) {
+            const PolyFace& face = nearestFace(source, points[k]);
+            const Vec3& ns = face.normal;
+            const double depth = w * s.f[k] * (ns.dot(points[k]) - face.offset);
+            // interactionWrench: sigma: depth (Ms . ns) n; split: depth (ns . n) (Ms . ns) ns.
+            normalPart += form == ForceForm::surfaceCharge ? Mat3(depth * n * ns.transpose())
+                                                           : Mat3((depth * ns.dot(n)) * ns * ns.transpose());
+        }
+    }
+    if (model == OverlapModel::amperian) return (mu0 / kFourPi) * nxA;
+    Mat3 K = -(mu0 / kFourPi) * phiN;
+    if (exterior) K += mu0 * normalPart;
+    return K;
+}
+
 InteractionEnergy interactionEnergy(const PolyhedronTables& source, const Vec3& Ms,
                                     std::span<const Vec3> points,
                                     std::span<const double> weights,

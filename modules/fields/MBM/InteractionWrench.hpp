@@ -103,6 +103,17 @@ Wrench interactionWrench(const PolyhedronTables& source, const Vec3& Ms,
                          std::span<const Vec3> normals, const Vec3& Mt, const Vec3& rc,
                          OverlapModel model, ForceForm form = ForceForm::split);
 
+/// The field integral of interactionWrench() per unit source magnetization: K with
+/// Wrench::fieldIntegral = K Ms (source frame), for any Ms, from one pass of the
+/// geometric outputs (S and the inside fraction; no B): the fieldIntegral of the
+/// three unit magnetizations at the cost of less than one wrench. The integral
+/// does not depend on M_t or on the form (split and surfaceCharge give the same
+/// for charge and amperian; for exterior the overlap's normal part is summed as
+/// each form sums it, which agree as the rule converges).
+Mat3 fieldIntegralMap(const PolyhedronTables& source, std::span<const Vec3> points,
+                      std::span<const double> weights, std::span<const Vec3> normals, OverlapModel model,
+                      ForceForm form = ForceForm::split);
+
 /// Energy-consistent quantities of the pair (both models at once, one field pass):
 /// F_model = -grad U_model and (T + Tm)_model = -dU_model/dtheta.
 struct InteractionEnergy {

@@ -158,6 +158,42 @@ public:
         return interaction(source, probe).fieldIntegral;
     }
 
+    // Regular rules: one pass of the geometric field S and the inside fraction
+    // at the target's samples (mbm::fieldIntegralMap), against three wrenches
+    // with unit source magnetizations; the same samples, equal to rounding.
+    // The adaptive rule refines for the magnetizations: three calls (the default).
+    Mat3 fieldIntegralMap(const Body& source, const Body& target) const override {
+        if (adaptive_) return FieldEvaluator::fieldIntegralMap(source, target);
+        const ShapeData& src = data(source.shape, source.name);
+        const ShapeData& tgt = data(target.shape, target.name);
+        const Quat qs = source.orientation.conjugate();
+        Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+        T.linear() = (qs * target.orientation).toRotationMatrix();
+        T.translation() = qs * (target.position - source.position);
+        thread_local std::vector<Vec3> points, normals;
+        mbm::transformSamples(tgt.samples, T, points, normals);
+        const std::size_t n = points.size();
+        const std::size_t blocks = (n + kSampleBlock - 1) / kSampleBlock;
+        const std::span<const Vec3> P(points), N(normals);
+        const std::span<const double> W(tgt.samples.weights);
+        std::vector<Mat3> partial(blocks, Mat3::Zero());
+        auto block = [&](std::size_t b) {
+            const std::size_t begin = b * kSampleBlock, count = std::min(kSampleBlock, n - begin);
+            partial[b] = mbm::fieldIntegralMap(src.tables, P.subspan(begin, count), W.subspan(begin, count),
+                                               N.subspan(begin, count), overlap_, form_);
+        };
+        if (blocks <= 1) {
+            if (blocks == 1) block(0);
+        } else {
+            parallelFor(blocks, block);
+        }
+        Mat3 K = Mat3::Zero();
+        for (const Mat3& k : partial) K += k;
+        const Mat3 R = source.orientation.toRotationMatrix();
+        samples_.fetch_add(n, std::memory_order_relaxed);
+        return R * K * R.transpose();
+    }
+
     std::string describe() const override {
         std::ostringstream s;
         s << "MBM (quadrature " << ruleName_;

@@ -237,6 +237,24 @@ public:
         return (1 - sw.s) * near_->fieldIntegral(source, target) + sw.s * farIntegral();
     }
 
+    // fieldIntegral() per unit source magnetization, tier by tier as there.
+    Mat3 fieldIntegralMap(const Body& source, const Body& target) const override {
+        const FarFieldBody fs = farFieldBody(source, dipoleReach(source));
+        const FarFieldBody ft = farFieldBody(target, dipoleReach(target));
+        if (isDipolePair(fs, ft)) return dipoleFieldIntegralMap(source, target);
+        const double distance = (target.position - source.position).norm();
+        const Switch sw = nearWeight(source, target, distance, false);
+        if (sw.isNear) return near_->fieldIntegralMap(source, target);
+        auto farMap = [&] {
+            const Switch dw = dipoleWeight(fs, ft, Vec3::Zero(), distance);
+            if (!dw.inBand) return far_->fieldIntegralMap(source, target);
+            return Mat3((1 - dw.s) * far_->fieldIntegralMap(source, target) +
+                        dw.s * dipoleFieldIntegralMap(source, target));
+        };
+        if (!sw.inBand) return farMap();
+        return (1 - sw.s) * near_->fieldIntegralMap(source, target) + sw.s * farMap();
+    }
+
     // The near tier's promise; the far tiers' errors fall with distance (dipoleTolerance).
     double forceTolerance() const override { return std::max(near_->forceTolerance(), dipoleTolerance_); }
 
@@ -312,6 +330,15 @@ public:
 
 private:
     // V_t B_s(c_t) of the source's point dipole (docs/physics.md#dipoles-and-edm).
+    // dipoleFieldIntegral per unit world magnetization of the source (m = V_s M).
+    static Mat3 dipoleFieldIntegralMap(const Body& source, const Body& target) {
+        const Vec3 r = target.position - source.position;
+        const double d = r.norm();
+        const Vec3 u = r / d;
+        return target.shape->volume * source.shape->volume * (mu0 / (4 * std::numbers::pi)) *
+               (3 * u * u.transpose() - Mat3::Identity()) / (d * d * d);
+    }
+
     static Vec3 dipoleFieldIntegral(const Body& source, const Body& target) {
         const Vec3 m = source.magneticMoment(), r = target.position - source.position;
         const double d = r.norm();

@@ -21,8 +21,9 @@
 //
 // Solve: the other bodies' field integrals are linear in their
 // magnetizations, so per call they are evaluated once per source (permanent
-// bodies and the applied field as they are, each soft body with its three unit
-// magnetizations: a 3x3 map per soft pair), then block Gauss-Seidel over the
+// bodies and the applied field as they are, each soft body as a 3x3 map per
+// soft pair, FieldEvaluator::fieldIntegralMap: one geometric pass with MBM's
+// regular rules, three calls otherwise), then block Gauss-Seidel over the
 // soft bodies, each block solved exactly (linear: (I/chi + N) M = h) or by
 // Newton (saturating), until no M changes by more than tolerance * Ms.
 #include "DemagTensor.hpp"
@@ -31,6 +32,7 @@
 #include <magFoam/Error.hpp>
 #include <magFoam/FieldEvaluator.hpp>
 #include <magFoam/InductionModel.hpp>
+#include <magFoam/SoftFieldIntegrals.hpp>
 
 #include <fmt/format.h>
 
@@ -111,47 +113,12 @@ public:
             N[a] = R * shapeData(b.shape).N * R.transpose();
         }
         // What each soft body responds to: the field integral I = -dU/dM of
-        // every energy it takes part in, U as the forces see it. The applied
-        // field: its wrench energy (linear in M). A pair with another body:
-        // U = -M_t . K M_s from the evaluator in the orientation addWrenches()
-        // uses (FieldEvaluator::orientedPair; the target's samples), so the
-        // target responds to K M_s and the source to K^T M_t. Then M is
-        // stationary for exactly the energy the forces derive from.
-        std::vector<int> slot(bodies.size(), -1); // body -> soft index
-        for (std::size_t a = 0; a < n; ++a) slot[soft[a]] = static_cast<int>(a);
-        std::vector<Vec3> fixedB(n, Vec3::Zero());        // from the applied field and permanent bodies
-        std::vector<Mat3> C(n * n, Mat3::Zero());         // C[a n + b]: I at a per unit world M of b
-        auto unitMagnetized = [](Body b, int c) {
-            b.magnetizationBody = b.orientation.conjugate() * Vec3::Unit(c);
-            return b;
-        };
-        for (std::size_t a = 0; a < n; ++a) {
-            if (!applied.active()) break;
-            const Body& target = bodies[soft[a]];
-            for (int c = 0; c < 3; ++c) fixedB[a][c] -= applied.wrench(unitMagnetized(target, c)).ownEnergy;
-        }
-        const std::span<const Body> all(bodies);
-        for (std::size_t i = 0; i < bodies.size(); ++i)
-            for (std::size_t j = i + 1; j < bodies.size(); ++j) {
-                const BodyPair p = FieldEvaluator::orientedPair(all, i, j);
-                const Body &s = bodies[p.source], &t = bodies[p.target];
-                const int ss = slot[p.source], ts = slot[p.target];
-                if (ss < 0 && ts < 0) continue;
-                if (ss >= 0 && ts >= 0) { // two soft bodies: K from three unit source magnetizations
-                    Mat3 K;
-                    for (int c = 0; c < 3; ++c) K.col(c) = field.fieldIntegral(unitMagnetized(s, c), t);
-                    C[ts * n + ss] = K, C[ss * n + ts] = K.transpose();
-                } else if (ts >= 0) { // soft target, permanent source: K M_s in one call
-                    if (s.magnetizationBody.squaredNorm() > 0) fixedB[ts] += field.fieldIntegral(s, t);
-                } else if (t.magnetizationBody.squaredNorm() > 0) { // soft source: K^T M_t from three energies
-                    for (int c = 0; c < 3; ++c) fixedB[ss][c] -= field.interaction(unitMagnetized(s, c), t).energy;
-                }
-            }
-        for (std::size_t a = 0; a < n; ++a) {
-            const double V = bodies[soft[a]].shape->volume;
-            fixedB[a] /= V;
-            for (std::size_t b = 0; b < n; ++b) C[a * n + b] /= V;
-        }
+        // every energy it takes part in, U as the forces see it, over its
+        // volume (SoftFieldIntegrals.hpp). Then M is stationary for exactly the
+        // energy the forces derive from.
+        const SoftFieldIntegrals fields = softFieldIntegrals(bodies, soft, field, applied, true);
+        const std::vector<Vec3>& fixedB = fields.fixed;  // from the applied field and permanent bodies
+        const std::vector<Mat3>& C = fields.coupling;    // C[a n + b]: B-bar at a per unit world M of b
 
         // Block Gauss-Seidel, from the magnetizations of the last call.
         std::vector<Vec3> M(n);
