@@ -95,11 +95,7 @@ public:
     Wrench interaction(const Body& source, const Body& target) const override {
         const ShapeData& src = data(source.shape, source.name);
         const ShapeData& tgt = data(target.shape, target.name);
-        // Target body frame -> source body frame.
-        const Quat qs = source.orientation.conjugate();
-        Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-        T.linear() = (qs * target.orientation).toRotationMatrix();
-        T.translation() = qs * (target.position - source.position);
+        const Eigen::Isometry3d T = targetToSource(source, target);
         if (adaptive_) return adaptiveInteraction(source, src, tgt, T, target);
         thread_local std::vector<Vec3> points, normals;
         mbm::transformSamples(tgt.samples, T, points, normals);
@@ -166,10 +162,7 @@ public:
         if (adaptive_) return FieldEvaluator::fieldIntegralMap(source, target);
         const ShapeData& src = data(source.shape, source.name);
         const ShapeData& tgt = data(target.shape, target.name);
-        const Quat qs = source.orientation.conjugate();
-        Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-        T.linear() = (qs * target.orientation).toRotationMatrix();
-        T.translation() = qs * (target.position - source.position);
+        const Eigen::Isometry3d T = targetToSource(source, target);
         thread_local std::vector<Vec3> points, normals;
         mbm::transformSamples(tgt.samples, T, points, normals);
         const std::size_t n = points.size();
@@ -226,6 +219,15 @@ public:
 
 private:
     struct ShapeData;
+
+    // Target body frame -> source body frame.
+    static Eigen::Isometry3d targetToSource(const Body& source, const Body& target) {
+        const Quat qs = source.orientation.conjugate();
+        Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+        T.linear() = (qs * target.orientation).toRotationMatrix();
+        T.translation() = qs * (target.position - source.position);
+        return T;
+    }
 
     Wrench adaptiveInteraction(const Body& source, const ShapeData& src, const ShapeData& tgt,
                                const Eigen::Isometry3d& T, const Body& target) const {
