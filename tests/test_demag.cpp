@@ -256,8 +256,8 @@ TEST_CASE("demag: a fixed soft body's pairs with fixed magnets count in the audi
     // A steel block held fixed 2 mm beside the cube's other face: the rod
     // passing magnetizes it, so its energy with the (fixed) cube changes,
     // though neither moves. The step's wrenches leave pairs of two fixed
-    // bodies out as constant (FieldEvaluator::heldConstant); with a soft one
-    // among them they are not, and the audit, which sums the step's wrenches,
+    // bodies out as constant unless a fixed body is soft
+    // (MagneticSystem::fixedPairsConstant), and the audit, which sums the step's wrenches,
     // must count them as energy.csv (full wrenches) does: the audit's start
     // energy equals energy.csv's first total (the log prints 6 digits).
     // Without the block's pair the audit started 7.3e-3 J off (0.0104 J against

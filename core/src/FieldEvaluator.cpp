@@ -28,7 +28,7 @@ void FieldEvaluator::addWrenches(std::span<const Body> bodies, std::span<const s
         for (std::size_t b = a + 1; b < active.size(); ++b) {
             const std::size_t i = active[a], j = active[b];
             if (sameRigidBody(bodies[i], bodies[j])) continue;
-            if (!(skipFixedPairs && heldConstant(bodies[i]) && heldConstant(bodies[j]))) pairs.add(i, j);
+            if (!(skipFixedPairs && bodies[i].fixed && bodies[j].fixed)) pairs.add(i, j);
         }
     pairs.finish();
 }

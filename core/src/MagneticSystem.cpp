@@ -69,15 +69,19 @@ std::vector<Wrench> MagneticSystem::partWrenches(const std::vector<Body>& bodies
     field_->addWrenches(bodies, active, skipFixedTargets, out);
     if (applied_->active())
         for (std::size_t i : active)
-            if (!(skipFixedTargets && FieldEvaluator::heldConstant(bodies[i]))) out[i] += applied_->wrench(bodies[i]);
+            if (!(skipFixedTargets && bodies[i].fixed)) out[i] += applied_->wrench(bodies[i]);
     return out;
 }
 
 MagneticSystem::Step MagneticSystem::step(std::vector<Body>& bodies) const {
     Step s;
     s.induction = converge(bodies);
-    s.wrenches = wrenches(bodies, true);
+    s.wrenches = wrenches(bodies, fixedPairsConstant(bodies));
     return s;
+}
+
+bool MagneticSystem::fixedPairsConstant(const std::vector<Body>& bodies) {
+    return std::none_of(bodies.begin(), bodies.end(), [](const Body& b) { return b.fixed && b.soft(); });
 }
 
 void MagneticSystem::field(const std::vector<Body>& bodies, std::span<const Vec3> points, std::span<Vec3> B,

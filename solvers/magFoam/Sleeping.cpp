@@ -105,7 +105,7 @@ MagneticSystem::Step Sleeping::magnetic(const MagneticSystem& magnets, std::vect
         std::vector<Body> still = bodies;
         for (std::size_t i = 0; i < still.size(); ++i)
             if (!asleep_[i] && !still[i].fixed) still[i].magnetizationBody.setZero();
-        frozen_ = magnets.wrenches(still, true);
+        frozen_ = magnets.wrenches(still, MagneticSystem::fixedPairsConstant(still));
         frozenValid_ = true;
     }
     for (std::size_t i = 0; i < bodies.size(); ++i) s.wrenches[i] += frozen_[i];

@@ -113,7 +113,7 @@ public:
     // The wrench on every body of a set from all the others in it: the scene
     // entry point (MagneticSystem calls it once per step). `out` is indexed
     // like `bodies`; only bodies listed in `active` take part, and with
-    // skipFixedPairs pairs of two heldConstant() bodies are left out. An evaluator may
+    // skipFixedPairs pairs of two fixed bodies are left out. An evaluator may
     // treat some pairs in bulk (e.g. far pairs as point dipoles, by a fast
     // sum); the default evaluates every pair once with interaction()
     // (addPairWrenches), in increasing (i, j) order of `active`.
@@ -128,12 +128,6 @@ public:
     static BodyPair orientedPair(std::span<const Body> bodies, std::size_t i, std::size_t j) {
         return bodies[j].fixed && !bodies[i].fixed ? BodyPair{j, i} : BodyPair{i, j};
     }
-
-    // A fixed permanent body: its pairs with other such bodies never change,
-    // so skipFixedPairs leaves them out. A fixed soft body's pairs change with
-    // its magnetization (a body moving past magnetizes it) and stay in: the
-    // energy audit needs them.
-    static bool heldConstant(const Body& b) { return b.fixed && !b.soft(); }
 
     // Whether a and b are parts of one compound body (Body::group): an
     // evaluator's addWrenches() leaves their pair out. (A pair it treats in

@@ -38,12 +38,18 @@ public:
     std::vector<Wrench> wrenches(const std::vector<Body>& bodies, bool skipFixedTargets = false) const;
 
     // The magnetic part of one solver step, as magFoam runs it: converge, then
-    // wrenches with pairs of two fixed bodies skipped.
+    // wrenches with pairs of two fixed bodies skipped where fixedPairsConstant.
     struct Step {
         InductionReport induction;
         std::vector<Wrench> wrenches;
     };
     Step step(std::vector<Body>& bodies) const;
+
+    // Whether the pairs of two fixed bodies are constant, so that a step may
+    // skip them: no fixed body is soft. A fixed soft body's magnetization
+    // changes with what moves past it, and with it its energy with a fixed
+    // magnet, which the audit sums from the step's wrenches.
+    static bool fixedPairsConstant(const std::vector<Body>& bodies);
 
     // The scene's magnetic energy (J) from wrenches() at converged
     // magnetizations, as the induction model counts soft bodies. A compound

@@ -1,6 +1,5 @@
 #include "DipoleFarField.hpp"
 
-#include "magFoam/FieldEvaluator.hpp"
 #include "magFoam/Threads.hpp"
 
 #include "DipoleBlockSum.hpp"
@@ -45,7 +44,7 @@ FarFieldBody farFieldBody(const Body& b, double reach) {
                  uz = 2 * std::fma(qx, M.y(), -(qy * M.x()));
     const double cx = std::fma(-qz, uy, qy * uz), cy = std::fma(-qx, uz, qz * ux), cz = std::fma(qx, uy, -(qy * ux));
     const Vec3 world(std::fma(qw, ux, M.x()) + cx, std::fma(qw, uy, M.y()) + cy, std::fma(qw, uz, M.z()) + cz);
-    return {b.position, world * b.shape->volume, reach, FieldEvaluator::heldConstant(b)};
+    return {b.position, world * b.shape->volume, reach, b.fixed};
 }
 
 namespace {

@@ -58,7 +58,7 @@ struct FarFieldBody {
     Vec3 position;  // centre of mass, m
     Vec3 moment;    // M V, A m^2
     double reach;   // m; may be +inf (never a dipole pair)
-    bool fixed;     // FieldEvaluator::heldConstant: pairs of two such bodies are constant
+    bool fixed;
 };
 
 // A body as the far field sees it, with the reach the evaluator gives it. Out of
