@@ -222,37 +222,12 @@ public:
     // alone, not on M_t): a dipole pair's energy -m_t . B_s(c_t) gives V_t B_s(c_t);
     // near and far pairs ask their evaluator.
     Vec3 fieldIntegral(const Body& source, const Body& target) const override {
-        const FarFieldBody fs = farFieldBody(source, dipoleReach(source));
-        const FarFieldBody ft = farFieldBody(target, dipoleReach(target));
-        if (isDipolePair(fs, ft)) return dipoleFieldIntegral(source, target);
-        const double distance = (target.position - source.position).norm();
-        const Switch sw = nearWeight(source, target, distance, false);
-        if (sw.isNear) return near_->fieldIntegral(source, target);
-        auto farIntegral = [&] {
-            const Switch dw = dipoleWeight(fs, ft, Vec3::Zero(), distance);
-            if (!dw.inBand) return far_->fieldIntegral(source, target);
-            return Vec3((1 - dw.s) * far_->fieldIntegral(source, target) + dw.s * dipoleFieldIntegral(source, target));
-        };
-        if (!sw.inBand) return farIntegral();
-        return (1 - sw.s) * near_->fieldIntegral(source, target) + sw.s * farIntegral();
+        return byTier(source, target, &FieldEvaluator::fieldIntegral, &dipoleFieldIntegral);
     }
 
     // fieldIntegral() per unit source magnetization, tier by tier as there.
     Mat3 fieldIntegralMap(const Body& source, const Body& target) const override {
-        const FarFieldBody fs = farFieldBody(source, dipoleReach(source));
-        const FarFieldBody ft = farFieldBody(target, dipoleReach(target));
-        if (isDipolePair(fs, ft)) return dipoleFieldIntegralMap(source, target);
-        const double distance = (target.position - source.position).norm();
-        const Switch sw = nearWeight(source, target, distance, false);
-        if (sw.isNear) return near_->fieldIntegralMap(source, target);
-        auto farMap = [&] {
-            const Switch dw = dipoleWeight(fs, ft, Vec3::Zero(), distance);
-            if (!dw.inBand) return far_->fieldIntegralMap(source, target);
-            return Mat3((1 - dw.s) * far_->fieldIntegralMap(source, target) +
-                        dw.s * dipoleFieldIntegralMap(source, target));
-        };
-        if (!sw.inBand) return farMap();
-        return (1 - sw.s) * near_->fieldIntegralMap(source, target) + sw.s * farMap();
+        return byTier(source, target, &FieldEvaluator::fieldIntegralMap, &dipoleFieldIntegralMap);
     }
 
     // The near tier's promise; the far tiers' errors fall with distance (dipoleTolerance).
@@ -330,6 +305,27 @@ public:
 
 private:
     // V_t B_s(c_t) of the source's point dipole (docs/physics.md#dipoles-and-edm).
+    // A quantity that is linear in the target's magnetization from the tiers
+    // interaction() would take (fieldIntegral, fieldIntegralMap): `of` of the
+    // near or far evaluator, `dipole` for dipole pairs, blended in the bands.
+    template <class T>
+    T byTier(const Body& source, const Body& target, T (FieldEvaluator::*of)(const Body&, const Body&) const,
+             T (*dipole)(const Body&, const Body&)) const {
+        const FarFieldBody fs = farFieldBody(source, dipoleReach(source));
+        const FarFieldBody ft = farFieldBody(target, dipoleReach(target));
+        if (isDipolePair(fs, ft)) return dipole(source, target);
+        const double distance = (target.position - source.position).norm();
+        const Switch sw = nearWeight(source, target, distance, false);
+        if (sw.isNear) return ((*near_).*of)(source, target);
+        auto farPart = [&] {
+            const Switch dw = dipoleWeight(fs, ft, Vec3::Zero(), distance);
+            if (!dw.inBand) return ((*far_).*of)(source, target);
+            return T((1 - dw.s) * ((*far_).*of)(source, target) + dw.s * dipole(source, target));
+        };
+        if (!sw.inBand) return farPart();
+        return T((1 - sw.s) * ((*near_).*of)(source, target) + sw.s * farPart());
+    }
+
     // dipoleFieldIntegral per unit world magnetization of the source (m = V_s M).
     static Mat3 dipoleFieldIntegralMap(const Body& source, const Body& target) {
         const Vec3 r = target.position - source.position;

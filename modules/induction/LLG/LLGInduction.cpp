@@ -344,16 +344,8 @@ public:
             d.fail("maxRotation", "LLG maxRotation must be in (0, pi/2] rad");
         gamma_ = d.get<double>("gamma", mu0 * 1.76086e11);
         if (!(gamma_ > 0)) d.fail("gamma", "LLG gamma must be > 0 (gyromagnetic ratio, m/(A s))");
-        const std::string average = d.get<std::string>("average", "none");
-        if (average == "none")
-            average_ = Average::none;
-        else if (average == "permanent")
-            average_ = Average::permanent;
-        else if (average == "all")
-            average_ = Average::all;
-        else
-            d.fail("average", "LLG average must be one of: none (the paper's field at the centre), permanent, all; "
-                              "got '" + average + "'");
+        const std::string average = d.getWord("average", {"none", "permanent", "all"}, "none");
+        average_ = average == "all" ? Average::all : average == "permanent" ? Average::permanent : Average::none;
     }
 
     using InductionModel::converge;
@@ -367,12 +359,13 @@ public:
         if (n == 0) return report;
         const std::vector<SoftParams> par = softParams(bodies, soft);
 
-        // Fields at the soft bodies' centres: permanent part and soft-to-soft maps.
-        std::vector<Vec3> centres(n);
-        for (std::size_t a = 0; a < n; ++a) centres[a] = bodies[soft[a]].position;
+        // The permanent part and the soft-to-soft maps: at the soft bodies'
+        // centres (the paper's), or averaged as the energy sees them.
         std::vector<Vec3> Bfixed;
         std::vector<Mat3> G; // G[b*n + a]: B at b per M_a (world)
         if (average_ == Average::none) {
+            std::vector<Vec3> centres(n);
+            for (std::size_t a = 0; a < n; ++a) centres[a] = bodies[soft[a]].position;
             Bfixed = permanentField(bodies, field, applied, centres);
             G = softMaps(bodies, soft, field);
         } else {
