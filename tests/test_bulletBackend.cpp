@@ -166,6 +166,10 @@ TEST_CASE("Bullet: a pair pressed together keeps zero angular momentum and rests
     checkPressedPair("Bullet");
 }
 
+TEST_CASE("Bullet: rolling and spinning friction stop a ball as their closed forms say", "[bulletBackend]") {
+    checkRollingSpinning("Bullet");
+}
+
 TEST_CASE("Bullet: a bar pressed onto a convex block holds a torque", "[bulletBackend]") {
     checkBarOnBlock("Bullet");
 }
@@ -294,6 +298,10 @@ TEST_CASE("Bullet: a NaN wrench and bad dictionaries are clear errors", "[bullet
                       Contains("rigidBody.yaml:2") && Contains("did you mean 'friction'"));
     CHECK_THROWS_WITH(backend("type: Bullet\ncontact: {restitution: 1.5}\n"), Contains("restitution must be in [0, 1]"));
     CHECK_THROWS_WITH(backend("type: Bullet\ncontact: {margin: 0}\n"), Contains("margin must be > 0"));
+    CHECK_THROWS_WITH(backend("type: Bullet\ncontact: {spinningFriction: -1}\n"),
+                      Contains("spinningFriction must be >= 0"));
+    CHECK_THROWS_WITH(backend("type: Bullet\ncontact: {friction: 0, rollingFriction: 1e-5}\n"),
+                      Contains("rollingFriction") && Contains("need friction > 0"));
     CHECK_THROWS_WITH(backend("type: Bullet\nsolverIterations: 0\n"), Contains("solverIterations must be 1..10000"));
     CHECK_THROWS_WITH(backend("type: Bullet\ncollisionShapes: convex\n"), Contains("valid values: auto, trimesh, mesh"));
     CHECK_THROWS_WITH(backend("type: Bullet\nccd: {sweptSphere: 2}\n"), Contains("(0, 1]"));

@@ -80,6 +80,10 @@ TEST_CASE("ODE: a pair pressed together keeps zero angular momentum and rests on
     checkPressedPair("ODE");
 }
 
+TEST_CASE("ODE: rolling and spinning friction stop a ball as their closed forms say", "[odeBackend]") {
+    checkRollingSpinning("ODE");
+}
+
 TEST_CASE("ODE: a bar pressed onto a convex block holds a torque", "[odeBackend]") {
     checkBarOnBlock("ODE");
 }
@@ -310,6 +314,8 @@ TEST_CASE("ODE: bad dictionaries are clear errors", "[odeBackend][badInput]") {
                           Contains("did you mean 'friction'"));
     CHECK_THROWS_WITH(backend("type: ODE\ncontact: {restitution: 1.5}\n"), Contains("restitution must be in [0, 1]"));
     CHECK_THROWS_WITH(backend("type: ODE\ncontact: {erp: 0}\n"), Contains("erp must be in (0, 1]"));
+    CHECK_THROWS_WITH(backend("type: ODE\ncontact: {rollingFriction: -1e-5}\n"),
+                      Contains("rollingFriction") && Contains("must be >= 0 (m: torque per normal force)"));
     CHECK_THROWS_WITH(backend("type: ODE\ncontact: {maxContacts: 0}\n"), Contains("maxContacts must be 1..64"));
     CHECK_THROWS_WITH(backend("type: ODE\nground: {hieght: 0}\n"), Contains("unknown key 'hieght'"));
     CHECK_THROWS_WITH(backend("type: ODE\nground: 0\n"), Contains("expected a mapping"));

@@ -15,6 +15,11 @@ ContactSettings ContactSettings::read(const Dict& d, const Dict& c) {
     }
     s.friction = c.get<double>("friction", 0.5);
     if (!(s.friction >= 0)) c.fail("friction", "friction coefficient must be >= 0");
+    s.rollingFriction = c.get<double>("rollingFriction", 0.0);
+    if (!(s.rollingFriction >= 0)) c.fail("rollingFriction", "rollingFriction must be >= 0 (m: torque per normal force)");
+    s.spinningFriction = c.get<double>("spinningFriction", 0.0);
+    if (!(s.spinningFriction >= 0))
+        c.fail("spinningFriction", "spinningFriction must be >= 0 (m: torque per normal force)");
     s.restitution = c.get<double>("restitution", 0.1);
     if (!(s.restitution >= 0 && s.restitution <= 1)) c.fail("restitution", "restitution must be in [0, 1]");
     s.bounceVelocity = c.get<double>("bounceVelocity", 0.1);

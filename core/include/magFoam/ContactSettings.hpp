@@ -14,6 +14,14 @@ struct ContactSettings {
     Vec3 gravity = Vec3::Zero();          // m/s^2
     std::optional<double> groundHeight;   // the plane z = height, if any
     double friction = 0.5;                // Coulomb mu of every pair
+    // Resistance to rolling (about the contact's tangents) and to spinning
+    // (about its normal), as lengths: a contact carrying the normal force N
+    // resists with a torque up to rollingFriction x N and spinningFriction x N.
+    // A rigid point contact has neither, so a body rocking on an edge or a
+    // pendulum hanging from a magnet swings for ever; a real contact is a
+    // patch that has both (docs/rigid-bodies.md#rolling-and-spinning-friction).
+    double rollingFriction = 0;           // m
+    double spinningFriction = 0;          // m
     double restitution = 0.1;
     double bounceVelocity = 0.1;          // m/s: slower impacts do not bounce
     double erp = 0.2;                     // share of the penetration corrected per sub-step

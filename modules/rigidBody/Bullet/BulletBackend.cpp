@@ -140,6 +140,9 @@ public:
         splitImpulse_ = c.get<bool>("splitImpulse", true);
         splitThreshold_ = c.get<double>("splitImpulseThreshold", -1e-5);
         if (!(splitThreshold_ <= 0)) c.fail("splitImpulseThreshold", "a penetration depth, <= 0 (m)");
+        if (s_.friction == 0 && (s_.rollingFriction > 0 || s_.spinningFriction > 0))
+            c.fail(s_.rollingFriction > 0 ? "rollingFriction" : "spinningFriction",
+                   "Bullet scales rolling and spinning friction by the friction: they need friction > 0");
         persistent_ = c.get<bool>("persistent", false);
         stiffness_ = c.get<double>("stiffness", 0.0);
         if (!(stiffness_ >= 0)) c.fail("stiffness", "a contact spring constant, >= 0 (N/m; 0: rigid contacts)");
@@ -407,7 +410,10 @@ public:
         os << "Bullet " << btGetVersion() << " (double), gravity [" << s_.gravity.x() << ", " << s_.gravity.y() << ", "
            << s_.gravity.z() << "] m/s^2";
         if (s_.groundHeight) os << ", ground z = " << *s_.groundHeight;
-        os << ", friction " << s_.friction << ", restitution " << s_.restitution << ", erp " << s_.erp << ", margin "
+        os << ", friction " << s_.friction;
+        if (s_.rollingFriction > 0 || s_.spinningFriction > 0)
+            os << ", rolling friction " << s_.rollingFriction << " m, spinning friction " << s_.spinningFriction << " m";
+        os << ", restitution " << s_.restitution << ", erp " << s_.erp << ", margin "
            << margin_ << " m, " << iterations_ << " solver iterations, split impulse " << (splitImpulse_ ? "on" : "off")
            << ", contacts " << (persistent_ ? "persistent" : "found anew every sub-step") << ", subSteps " << s_.subSteps;
         if (stiffness_ > 0) os << ", contact springs " << stiffness_ << " N/m, " << damping_ << " N s/m";
@@ -438,8 +444,18 @@ private:
         // Bullet combines two objects' stiffnesses as springs in series and
         // adds their dampings: each gets 2 k and d / 2, a pair k and d.
         if (stiffness_ > 0) b.setContactStiffnessAndDamping(2 * stiffness_, 0.5 * damping_);
-        b.setRollingFriction(0);
-        b.setSpinningFriction(0);
+        // Bullet combines r0 f1 + r1 f0 (btManifoldResult): with f = sqrt(mu)
+        // on every object, r = b / (2 sqrt(mu)) gives the pair b (a length:
+        // torque impulse per normal impulse, as ODE's rho).
+        // Bullet adds a contact's spinning-friction row only where its rolling
+        // friction is positive: a spinning one alone gets a rolling friction
+        // too small to act.
+        const double f = std::sqrt(s_.friction);
+        const double rolling = s_.rollingFriction > 0   ? s_.rollingFriction
+                               : s_.spinningFriction > 0 ? std::numeric_limits<double>::min()
+                                                         : 0.0;
+        b.setRollingFriction(f > 0 ? rolling / (2 * f) : 0.0);
+        b.setSpinningFriction(f > 0 ? s_.spinningFriction / (2 * f) : 0.0);
     }
 
     static double smallestExtent(const Shape& s) {
@@ -634,6 +650,11 @@ const TypeDoc kDoc{
      {"ground.height", "m", "height of the ground plane"},
      {"contact", "-", "contact parameters of every pair"},
      {"contact.friction", "-", "Coulomb coefficient mu of every pair, >= 0"},
+     {"contact.rollingFriction", "m",
+      "rolling resistance: a contact resists rolling with a torque up to this times its normal force, >= 0 "
+      "(default 0; needs friction > 0)"},
+     {"contact.spinningFriction", "m",
+      "spinning resistance: the same about the contact's normal, >= 0 (default 0; needs friction > 0)"},
      {"contact.restitution", "-", "0..1"},
      {"contact.bounceVelocity", "m/s", "slower impacts do not bounce"},
      {"contact.erp", "-", "share of the penetration corrected per sub-step, (0, 1]"},

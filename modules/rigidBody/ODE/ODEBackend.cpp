@@ -363,6 +363,7 @@ public:
         if (!(maxCorrectingVelocity_ > 0)) c.fail("maxCorrectingVelocity", "maxCorrectingVelocity must be > 0 (m/s)");
         meshCorrection_ = c.get<bool>("meshCorrection", true);
         frictionBounds_ = c.getWord("frictionBound", {"normalForce", "findex"}, "normalForce") == "normalForce";
+        rolling_ = s_.rollingFriction > 0 || s_.spinningFriction > 0;
 
         c.reportUnused();
 
@@ -497,10 +498,12 @@ public:
             // friction bounded by mu times the normal force just solved (the
             // others keep ODE's findex bound).
             const bool check = frictionBounds_ && !quickStep_ && !made_.empty();
-            if (check) {
+            const bool rolling = rolling_ && !made_.empty();
+            if (check || rolling) {
                 snapshot();
                 for (Made& m : made_) dJointSetFeedback(m.joint, &m.feedback); // made_ is complete now
             }
+            for (Made& m : made_) m.starved = false;
             dRandSetSeed(rng_);
             if (quickStep_)
                 dWorldQuickStep(world_, h);
@@ -527,11 +530,7 @@ public:
                 dJointGroupEmpty(group_);
                 for (const Made& m : made_) {
                     if (!redo[entryOf(m.b1 ? m.b1 : m.b2)]) continue;
-                    dContact joint = m.contact;
-                    if (m.starved) {
-                        joint.surface.mode &= ~dContactApprox1;
-                        joint.surface.mu = s_.friction * m.normalForce;
-                    }
+                    const dContact joint = boundedContact(m);
                     dJointAttach(dJointCreateContact(world_, group_, &joint), m.b1, m.b2);
                 }
                 dRandSetSeed(rng_);
@@ -539,6 +538,7 @@ public:
                 for (std::size_t k = 0; k < saved_.size(); ++k)
                     if (wasEnabled[k]) dBodyEnable(saved_[k].body);
             }
+            if (rolling) resistRolling(h);
             made_.clear();
             unstiffen(stiffness, own);
             rng_ = dRandGetSeed();
@@ -710,8 +710,10 @@ public:
         os << "ODE " << (quickStep_ ? "dWorldQuickStep (" + std::to_string(iterations_) + " iterations)" : "dWorldStep")
            << ", gravity [" << s_.gravity.x() << ", " << s_.gravity.y() << ", " << s_.gravity.z() << "] m/s^2";
         if (s_.groundHeight) os << ", ground z = " << *s_.groundHeight;
-        os << ", friction " << s_.friction << (frictionBounds_ ? "" : " (bound: findex)") << ", restitution "
-           << s_.restitution << ", erp " << s_.erp << ", cfm " << cfm_
+        os << ", friction " << s_.friction << (frictionBounds_ ? "" : " (bound: findex)");
+        if (rolling_)
+            os << ", rolling friction " << s_.rollingFriction << " m, spinning friction " << s_.spinningFriction << " m";
+        os << ", restitution " << s_.restitution << ", erp " << s_.erp << ", cfm " << cfm_
            << ", maxContacts " << maxContacts_ << ", subSteps " << s_.subSteps;
         // Bodies per collision shape, then (once stepping) what the steps did.
         std::map<std::string, int> count;
@@ -720,12 +722,14 @@ public:
         os << "; collision shapes:";
         const char* sep = " ";
         for (const auto& [name, n] : count) os << sep << n << " " << name, sep = ", ";
-        if (stats_.steps > 0)
+        if (stats_.steps > 0) {
             os << "; sub-steps taken " << stats_.subSteps << " in " << stats_.steps << " steps; contacts found "
                << stats_.contactsFound << ", clipped from convex faces " << stats_.contactsClipped << ", dropped "
                << stats_.contactsDropped << ", merged " << stats_.contactsMerged
                << ", used " << stats_.contactsUsed << "; sub-steps solved again for friction "
                << stats_.frictionRedone << " (bodies in them " << stats_.frictionRedoneBodies << ")";
+            if (rolling_) os << ", for rolling friction " << stats_.rollingRedone;
+        }
         return os.str();
     }
 
@@ -734,6 +738,7 @@ public:
         long contactsFound = 0, contactsDropped = 0, contactsMerged = 0, contactsUsed = 0;
         long contactsClipped = 0; // face contacts clipped from libccd's one point per convex pair
         long frictionRedone = 0, frictionRedoneBodies = 0; // sub-steps solved again, bodies in them
+        long rollingRedone = 0;                            // sub-steps solved again with rolling friction
         long steps = 0, subSteps = 0;
     };
 
@@ -870,7 +875,7 @@ private:
         joint.surface.soft_cfm = cfm_;
         const dJointID id = dJointCreateContact(world_, group_, &joint);
         dJointAttach(id, b1, b2);
-        if (frictionBounds_ && s_.friction > 0) made_.push_back({joint, b1, b2, id, {}, 0, false});
+        if ((frictionBounds_ && s_.friction > 0) || rolling_) made_.push_back({joint, b1, b2, id, {}, 0, false});
     }
 
     // The contact joints of this sub-step, with ODE's answer (feedback; its
@@ -882,6 +887,7 @@ private:
         dJointFeedback feedback;
         double normalForce;
         bool starved;
+        bool resolve = false; // resistRolling: in an island solved again
     };
     std::vector<Made> made_; // cleared every sub-step, its storage kept
     // The entries_ index of an ODE body (its user data, set at setup).
@@ -894,6 +900,115 @@ private:
     // solved. Half, not all: a findex bound from a normal force that differs
     // a little is ODE's approximation; the fault is a bound near zero. Stores
     // each contact's normal force for the second solve.
+    // Rolling and spinning friction (ContactSettings::rollingFriction,
+    // spinningFriction). ODE's own rolling rows (dContactRolling) are the same
+    // for every contact of a pair, and wherever contacts close a loop they
+    // repeat the other pairs' rows: dWorldStep's LCP then meets a zero pivot
+    // and stops (Fig. 9 within 400 steps). So they are a torque instead, found
+    // from the sub-step just solved: per touching pair, its normal force N
+    // (the contacts' feedback) and the relative spin it came out with, split
+    // about the pair's mean normal into rolling and spinning; against each a
+    // torque of rollingFriction x N (spinningFriction x N), at most the one that
+    // stops that relative spin in the sub-step (it never turns it round). The
+    // islands with such a torque are solved again with it, from the same
+    // start, contacts and friction bounds. A body that an external torque
+    // below the bound would turn keeps still: the first solve shows the turn,
+    // the second takes it back.
+    void resistRolling(double h) {
+        struct Pair {
+            dBodyID b1, b2;
+            double normalForce = 0;
+            Vec3 normal = Vec3::Zero();
+        };
+        std::vector<Pair> pairs;
+        for (const Made& m : made_) {
+            const dContactGeom& g = m.contact.geom;
+            const Vec3 n(g.normal[0], g.normal[1], g.normal[2]);
+            const Vec3 f1(m.feedback.f1[0], m.feedback.f1[1], m.feedback.f1[2]);
+            const double N = (m.b1 ? f1 : Vec3(-f1)).dot(n); // as markStarvedFriction
+            if (!(N > 0)) continue;
+            auto it = std::find_if(pairs.begin(), pairs.end(), [&](const Pair& p) {
+                return (p.b1 == m.b1 && p.b2 == m.b2) || (p.b1 == m.b2 && p.b2 == m.b1);
+            });
+            if (it == pairs.end()) it = pairs.insert(pairs.end(), Pair{m.b1, m.b2});
+            it->normalForce += N;
+            it->normal += (it->b1 == m.b1 ? N : -N) * n;
+        }
+        std::vector<Vec3> torque(entries_.size(), Vec3::Zero());
+        bool any = false;
+        for (const Pair& p : pairs) {
+            if (!(p.normal.norm() > 0)) continue;
+            const Vec3 n = p.normal.normalized();
+            const Vec3 w = spinOf(p.b1) - spinOf(p.b2);
+            const Vec3 spin = w.dot(n) * n;
+            for (const auto& [part, length] : {std::pair(spin, s_.spinningFriction), std::pair(Vec3(w - spin), s_.rollingFriction)}) {
+                const double rate = part.norm();
+                if (!(length > 0) || !(rate > 0)) continue;
+                const Vec3 u = part / rate;
+                const double k = u.dot((inverseInertia(p.b1) + inverseInertia(p.b2)) * u);
+                if (!(k > 0)) continue;
+                const double T = std::min(length * p.normalForce, rate / (k * h));
+                if (p.b1) torque[entryOf(p.b1)] -= T * u;
+                if (p.b2) torque[entryOf(p.b2)] += T * u;
+                any = true;
+            }
+        }
+        if (!any) return;
+        stats_.rollingRedone += 1;
+        // The islands of the bodies with a torque are solved again.
+        for (Made& m : made_) m.resolve = torque[entryOf(m.b1 ? m.b1 : m.b2)].squaredNorm() > 0 ||
+                                          (m.b1 && m.b2 && torque[entryOf(m.b2)].squaredNorm() > 0);
+        const std::vector<char> redo = islandsOf([](const Made& m) { return m.resolve; });
+        std::vector<char> wasEnabled(saved_.size(), 0);
+        for (std::size_t k = 0; k < saved_.size(); ++k) {
+            if (!saved_[k].body) continue; // fixed
+            if (redo[k]) {
+                restore(saved_[k]);
+                const Vec3& T = torque[k];
+                dBodyAddTorque(saved_[k].body, T.x(), T.y(), T.z());
+            } else {
+                wasEnabled[k] = static_cast<char>(dBodyIsEnabled(saved_[k].body));
+                dBodyDisable(saved_[k].body);
+            }
+        }
+        dJointGroupEmpty(group_);
+        for (const Made& m : made_) {
+            if (!redo[entryOf(m.b1 ? m.b1 : m.b2)]) continue;
+            const dContact joint = boundedContact(m);
+            dJointAttach(dJointCreateContact(world_, group_, &joint), m.b1, m.b2);
+        }
+        dRandSetSeed(rng_);
+        dWorldStep(world_, h);
+        for (std::size_t k = 0; k < saved_.size(); ++k)
+            if (wasEnabled[k]) dBodyEnable(saved_[k].body);
+    }
+    static Vec3 spinOf(dBodyID body) {
+        if (!body) return Vec3::Zero();
+        const dReal* w = dBodyGetAngularVel(body);
+        return Vec3(w[0], w[1], w[2]);
+    }
+    // World-frame inverse inertia of a body as ODE has it now (zero: fixed).
+    static Mat3 inverseInertia(dBodyID body) {
+        if (!body || !dBodyIsEnabled(body)) return Mat3::Zero();
+        dMass mass;
+        dBodyGetMass(body, &mass);
+        Mat3 I, R;
+        const dReal* r = dBodyGetRotation(body);
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) I(i, j) = mass.I[4 * i + j], R(i, j) = r[4 * i + j];
+        return R * I.inverse() * R.transpose();
+    }
+    // A made contact as solved again: a starved one with its friction
+    // bounded by mu times the normal force found (markStarvedFriction).
+    dContact boundedContact(const Made& m) const {
+        dContact joint = m.contact;
+        if (m.starved) {
+            joint.surface.mode &= ~dContactApprox1;
+            joint.surface.mu = s_.friction * m.normalForce;
+        }
+        return joint;
+    }
+
     bool markStarvedFriction() {
         bool any = false;
         for (Made& m : made_) {
@@ -962,6 +1077,11 @@ private:
     // Per entry: does its body share an island (bodies joined by contacts;
     // fixed bodies and the ground join none) with a starved contact?
     std::vector<char> starvedIslands() const {
+        return islandsOf([](const Made& m) { return m.starved; });
+    }
+    // Per entry: does its body share an island with a contact that `marked`?
+    template <class Marked>
+    std::vector<char> islandsOf(Marked marked) const {
         std::vector<std::size_t> parent(saved_.size());
         for (std::size_t k = 0; k < parent.size(); ++k) parent[k] = k;
         auto root = [&](std::size_t k) {
@@ -972,7 +1092,7 @@ private:
             if (m.b1 && m.b2) parent[root(entryOf(m.b1))] = root(entryOf(m.b2));
         std::vector<char> starvedRoot(saved_.size(), 0), redo(saved_.size(), 0);
         for (const Made& m : made_)
-            if (m.starved) starvedRoot[root(entryOf(m.b1 ? m.b1 : m.b2))] = 1;
+            if (marked(m)) starvedRoot[root(entryOf(m.b1 ? m.b1 : m.b2))] = 1;
         for (std::size_t k = 0; k < saved_.size(); ++k) redo[k] = starvedRoot[root(k)];
         return redo;
     }
@@ -1225,6 +1345,7 @@ private:
     ContactSettings s_;
     double cfm_ = 1e-9, maxCorrectingVelocity_ = 0.1;
     bool frictionBounds_ = true;
+    bool rolling_ = false; // rollingFriction or spinningFriction > 0
     int maxContacts_ = 8, iterations_ = 20;
     bool quickStep_ = false, meshOnly_ = false, usePieces_ = true, meshCorrection_ = true;
     unsigned long seed_ = 0, rng_ = 0;
@@ -1261,6 +1382,11 @@ const TypeDoc kDoc{
       "normalForce (a sub-step in which a contact slid with less than half the friction its normal force allows "
       "is solved again, that contact's friction bounded by mu times that normal force) or findex (ODE's own "
       "bound alone, from a solve without friction)"},
+     {"contact.rollingFriction", "m",
+      "rolling resistance: a touching pair resists rolling with a torque up to this times its normal force, "
+      ">= 0 (default 0)"},
+     {"contact.spinningFriction", "m",
+      "spinning resistance: the same about the contact's normal, >= 0 (default 0)"},
      {"contact.restitution", "-", "0..1"},
      {"contact.bounceVelocity", "m/s", "slower impacts do not bounce"},
      {"contact.erp", "-", "share of the penetration corrected per step, (0, 1]"},
