@@ -515,28 +515,7 @@ public:
                 // contact are solved again. dWorldStep solves islands apart,
                 // so the others would come out the same, bit for bit: they
                 // keep this solve and sit the second one out disabled.
-                const std::vector<char> redo = starvedIslands();
-                std::vector<char> wasEnabled(saved_.size(), 0);
-                for (std::size_t k = 0; k < saved_.size(); ++k) {
-                    if (!saved_[k].body) continue; // fixed
-                    if (redo[k]) {
-                        restore(saved_[k]);
-                        stats_.frictionRedoneBodies += 1;
-                    } else {
-                        wasEnabled[k] = static_cast<char>(dBodyIsEnabled(saved_[k].body));
-                        dBodyDisable(saved_[k].body);
-                    }
-                }
-                dJointGroupEmpty(group_);
-                for (const Made& m : made_) {
-                    if (!redo[entryOf(m.b1 ? m.b1 : m.b2)]) continue;
-                    const dContact joint = boundedContact(m);
-                    dJointAttach(dJointCreateContact(world_, group_, &joint), m.b1, m.b2);
-                }
-                dRandSetSeed(rng_);
-                dWorldStep(world_, h);
-                for (std::size_t k = 0; k < saved_.size(); ++k)
-                    if (wasEnabled[k]) dBodyEnable(saved_[k].body);
+                stats_.frictionRedoneBodies += solveAgain(starvedIslands(), h);
             }
             if (rolling) resistRolling(h);
             made_.clear();
@@ -958,14 +937,22 @@ private:
         // The islands of the bodies with a torque are solved again.
         for (Made& m : made_) m.resolve = torque[entryOf(m.b1 ? m.b1 : m.b2)].squaredNorm() > 0 ||
                                           (m.b1 && m.b2 && torque[entryOf(m.b2)].squaredNorm() > 0);
-        const std::vector<char> redo = islandsOf([](const Made& m) { return m.resolve; });
+        solveAgain(islandsOf([](const Made& m) { return m.resolve; }), h, &torque);
+    }
+    // The sub-step again for the bodies marked in `redo` (whole islands), from
+    // its start (snapshot) with its contacts (boundedContact) and, where
+    // given, an extra torque per entry. dWorldStep solves islands apart, so
+    // the others would come out the same, bit for bit: they keep this solve
+    // and sit the second one out disabled. Returns the bodies solved again.
+    long solveAgain(const std::vector<char>& redo, double h, const std::vector<Vec3>* torque = nullptr) {
+        long count = 0;
         std::vector<char> wasEnabled(saved_.size(), 0);
         for (std::size_t k = 0; k < saved_.size(); ++k) {
             if (!saved_[k].body) continue; // fixed
             if (redo[k]) {
                 restore(saved_[k]);
-                const Vec3& T = torque[k];
-                dBodyAddTorque(saved_[k].body, T.x(), T.y(), T.z());
+                if (torque) dBodyAddTorque(saved_[k].body, (*torque)[k].x(), (*torque)[k].y(), (*torque)[k].z());
+                ++count;
             } else {
                 wasEnabled[k] = static_cast<char>(dBodyIsEnabled(saved_[k].body));
                 dBodyDisable(saved_[k].body);
@@ -978,9 +965,13 @@ private:
             dJointAttach(dJointCreateContact(world_, group_, &joint), m.b1, m.b2);
         }
         dRandSetSeed(rng_);
-        dWorldStep(world_, h);
+        if (quickStep_)
+            dWorldQuickStep(world_, h);
+        else
+            dWorldStep(world_, h);
         for (std::size_t k = 0; k < saved_.size(); ++k)
             if (wasEnabled[k]) dBodyEnable(saved_[k].body);
+        return count;
     }
     static Vec3 spinOf(dBodyID body) {
         if (!body) return Vec3::Zero();
