@@ -872,13 +872,6 @@ private:
     // The entries_ index of an ODE body (its user data, set at setup).
     static std::size_t entryOf(dBodyID body) { return reinterpret_cast<std::size_t>(dBodyGetData(body)); }
 
-    // Marks the contacts whose friction was starved: sliding (faster than
-    // 1e-5 m/s, well above the LCP's round-off and 100x below the sleep
-    // speed) in a friction direction (ODE's dPlaneSpace of the normal, as the
-    // contact joint uses it) with less than half of mu times the normal force
-    // solved. Half, not all: a findex bound from a normal force that differs
-    // a little is ODE's approximation; the fault is a bound near zero. Stores
-    // each contact's normal force for the second solve.
     // Rolling and spinning friction (ContactSettings::rollingFriction,
     // spinningFriction). ODE's own rolling rows (dContactRolling) are the same
     // for every contact of a pair, and wherever contacts close a loop they
@@ -1000,6 +993,13 @@ private:
         return joint;
     }
 
+    // Marks the contacts whose friction was starved: sliding (faster than
+    // 1e-5 m/s, well above the LCP's round-off and 100x below the sleep
+    // speed) in a friction direction (ODE's dPlaneSpace of the normal, as the
+    // contact joint uses it) with less than half of mu times the normal force
+    // solved. Half, not all: a findex bound from a normal force that differs
+    // a little is ODE's approximation; the fault is a bound near zero. Stores
+    // each contact's normal force for the second solve.
     bool markStarvedFriction() {
         bool any = false;
         for (Made& m : made_) {
