@@ -503,7 +503,6 @@ public:
                 snapshot();
                 for (Made& m : made_) dJointSetFeedback(m.joint, &m.feedback); // made_ is complete now
             }
-            for (Made& m : made_) m.starved = false;
             dRandSetSeed(rng_);
             if (quickStep_)
                 dWorldQuickStep(world_, h);
@@ -515,7 +514,7 @@ public:
                 // contact are solved again. dWorldStep solves islands apart,
                 // so the others would come out the same, bit for bit: they
                 // keep this solve and sit the second one out disabled.
-                stats_.frictionRedoneBodies += solveAgain(starvedIslands(), h);
+                stats_.frictionRedoneBodies += solveAgain(islandsOf([](const Made& m) { return m.starved; }), h);
             }
             if (rolling) resistRolling(h);
             made_.clear();
@@ -866,9 +865,16 @@ private:
         dJointFeedback feedback;
         double normalForce;
         bool starved;
-        bool resolve = false; // resistRolling: in an island solved again
     };
     std::vector<Made> made_; // cleared every sub-step, its storage kept
+    // resistRolling's touching pairs and torques per entry (storage kept).
+    struct Pair {
+        dBodyID b1, b2;
+        double normalForce = 0;
+        Vec3 normal = Vec3::Zero();
+    };
+    std::vector<Pair> pairs_;
+    std::vector<Vec3> rollingTorque_;
     // The entries_ index of an ODE body (its user data, set at setup).
     static std::size_t entryOf(dBodyID body) { return reinterpret_cast<std::size_t>(dBodyGetData(body)); }
 
@@ -883,54 +889,63 @@ private:
     // torque of rollingFriction x N (spinningFriction x N), at most the one that
     // stops that relative spin in the sub-step (it never turns it round). The
     // islands with such a torque are solved again with it, from the same
-    // start, contacts and friction bounds. A body that an external torque
-    // below the bound would turn keeps still: the first solve shows the turn,
-    // the second takes it back.
+    // start, contacts and friction bounds. The cap takes the bodies' own
+    // inertia, not what their contacts add (a ball rolling on its contact
+    // turns about the contact point): a torque below the bound leaves a slow
+    // creep instead of rest (tests/backendFixture.hpp, rollingSpinning).
     void resistRolling(double h) {
-        struct Pair {
-            dBodyID b1, b2;
-            double normalForce = 0;
-            Vec3 normal = Vec3::Zero();
-        };
-        std::vector<Pair> pairs;
+        // The touching pairs: their total normal force and its direction
+        // (from b1's side).
+        pairs_.clear();
         for (const Made& m : made_) {
-            const dContactGeom& g = m.contact.geom;
-            const Vec3 n(g.normal[0], g.normal[1], g.normal[2]);
-            const Vec3 f1(m.feedback.f1[0], m.feedback.f1[1], m.feedback.f1[2]);
-            const double N = (m.b1 ? f1 : Vec3(-f1)).dot(n); // as markStarvedFriction
+            const Vec3 n = normalOf(m);
+            const double N = contactForce(m).dot(n);
             if (!(N > 0)) continue;
-            auto it = std::find_if(pairs.begin(), pairs.end(), [&](const Pair& p) {
+            auto it = std::find_if(pairs_.begin(), pairs_.end(), [&](const Pair& p) {
                 return (p.b1 == m.b1 && p.b2 == m.b2) || (p.b1 == m.b2 && p.b2 == m.b1);
             });
-            if (it == pairs.end()) it = pairs.insert(pairs.end(), Pair{m.b1, m.b2});
+            if (it == pairs_.end()) it = pairs_.insert(pairs_.end(), Pair{m.b1, m.b2});
             it->normalForce += N;
             it->normal += (it->b1 == m.b1 ? N : -N) * n;
         }
-        std::vector<Vec3> torque(entries_.size(), Vec3::Zero());
+        rollingTorque_.assign(entries_.size(), Vec3::Zero());
         bool any = false;
-        for (const Pair& p : pairs) {
+        for (const Pair& p : pairs_) {
             if (!(p.normal.norm() > 0)) continue;
             const Vec3 n = p.normal.normalized();
             const Vec3 w = spinOf(p.b1) - spinOf(p.b2);
             const Vec3 spin = w.dot(n) * n;
+            const Mat3 compliance = inverseInertia(p.b1) + inverseInertia(p.b2);
             for (const auto& [part, length] : {std::pair(spin, s_.spinningFriction), std::pair(Vec3(w - spin), s_.rollingFriction)}) {
                 const double rate = part.norm();
                 if (!(length > 0) || !(rate > 0)) continue;
                 const Vec3 u = part / rate;
-                const double k = u.dot((inverseInertia(p.b1) + inverseInertia(p.b2)) * u);
+                const double k = u.dot(compliance * u);
                 if (!(k > 0)) continue;
                 const double T = std::min(length * p.normalForce, rate / (k * h));
-                if (p.b1) torque[entryOf(p.b1)] -= T * u;
-                if (p.b2) torque[entryOf(p.b2)] += T * u;
+                if (p.b1) rollingTorque_[entryOf(p.b1)] -= T * u;
+                if (p.b2) rollingTorque_[entryOf(p.b2)] += T * u;
                 any = true;
             }
         }
         if (!any) return;
         stats_.rollingRedone += 1;
         // The islands of the bodies with a torque are solved again.
-        for (Made& m : made_) m.resolve = torque[entryOf(m.b1 ? m.b1 : m.b2)].squaredNorm() > 0 ||
-                                          (m.b1 && m.b2 && torque[entryOf(m.b2)].squaredNorm() > 0);
-        solveAgain(islandsOf([](const Made& m) { return m.resolve; }), h, &torque);
+        auto turned = [&](dBodyID b) { return b && rollingTorque_[entryOf(b)].squaredNorm() > 0; };
+        solveAgain(islandsOf([&](const Made& m) { return turned(m.b1) || turned(m.b2); }), h, &rollingTorque_);
+    }
+    // A contact's force as solved (its feedback), on geom 1's side. f1 is the
+    // force on the joint's first body; ODE attaches a joint given (none,
+    // body) as (body, none), so where geom 1 is fixed f1 is geom 2's body's
+    // force (f2 stays zero: reading it, the friction check once saw no normal
+    // force there).
+    static Vec3 contactForce(const Made& m) {
+        const Vec3 f1(m.feedback.f1[0], m.feedback.f1[1], m.feedback.f1[2]);
+        return m.b1 ? f1 : Vec3(-f1);
+    }
+    static Vec3 normalOf(const Made& m) {
+        const dReal* n = m.contact.geom.normal;
+        return Vec3(n[0], n[1], n[2]);
     }
     // The sub-step again for the bodies marked in `redo` (whole islands), from
     // its start (snapshot) with its contacts (boundedContact) and, where
@@ -1005,14 +1020,9 @@ private:
         for (Made& m : made_) {
             m.starved = false;
             const dContactGeom& g = m.contact.geom;
-            const Vec3 n(g.normal[0], g.normal[1], g.normal[2]), p(g.pos[0], g.pos[1], g.pos[2]);
-            // Force on the side of geom 1. f1 is the force on the joint's
-            // first body; ODE attaches a joint given (none, body) as (body,
-            // none), so where geom 1 is fixed f1 is geom 2's body's force (f2
-            // stays zero: reading it, the check saw no normal force there).
-            const Vec3 f1(m.feedback.f1[0], m.feedback.f1[1], m.feedback.f1[2]);
-            const Vec3 f = m.b1 ? f1 : Vec3(-f1);
-            m.normalForce = f.dot(n);
+            const Vec3 p(g.pos[0], g.pos[1], g.pos[2]);
+            const Vec3 f = contactForce(m);
+            m.normalForce = f.dot(normalOf(m));
             if (!(m.normalForce > 0)) continue;
             const Vec3 v = pointVelocity(m.b1, p) - pointVelocity(m.b2, p);
             dVector3 t1, t2;
@@ -1066,11 +1076,7 @@ private:
         if (s.enabled) dBodyEnable(s.body); else dBodyDisable(s.body);
     }
     // Per entry: does its body share an island (bodies joined by contacts;
-    // fixed bodies and the ground join none) with a starved contact?
-    std::vector<char> starvedIslands() const {
-        return islandsOf([](const Made& m) { return m.starved; });
-    }
-    // Per entry: does its body share an island with a contact that `marked`?
+    // fixed bodies and the ground join none) with a contact that `marked`?
     template <class Marked>
     std::vector<char> islandsOf(Marked marked) const {
         std::vector<std::size_t> parent(saved_.size());
@@ -1081,10 +1087,10 @@ private:
         };
         for (const Made& m : made_)
             if (m.b1 && m.b2) parent[root(entryOf(m.b1))] = root(entryOf(m.b2));
-        std::vector<char> starvedRoot(saved_.size(), 0), redo(saved_.size(), 0);
+        std::vector<char> markedRoot(saved_.size(), 0), redo(saved_.size(), 0);
         for (const Made& m : made_)
-            if (marked(m)) starvedRoot[root(entryOf(m.b1 ? m.b1 : m.b2))] = 1;
-        for (std::size_t k = 0; k < saved_.size(); ++k) redo[k] = starvedRoot[root(k)];
+            if (marked(m)) markedRoot[root(entryOf(m.b1 ? m.b1 : m.b2))] = 1;
+        for (std::size_t k = 0; k < saved_.size(); ++k) redo[k] = markedRoot[root(k)];
         return redo;
     }
 
