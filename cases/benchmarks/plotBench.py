@@ -138,18 +138,30 @@ def table2():
     data = rows("table2")
     if not data:
         return
+    # Per case: the magnetic part at each thread count (the case's own
+    # backend's runs) and the rigid-body step on each backend (one thread),
+    # on a log scale: the cases span three decades.
+    cases = list(dict.fromkeys(r["case"] for r in data))
+    threads = sorted({int(r["threads"]) for r in data})
+    backends = list(dict.fromkeys(r.get("backend") or "" for r in data))
+    series = [(f"magnetic, {t} thread{'s' if t > 1 else ''}",
+               lambda c, t=t: [float(r["msMagnetic"]) for r in data if r["case"] == c and int(r["threads"]) == t])
+              for t in threads]
+    series += [(f"rigid body, {b}, 1 thread",
+                lambda c, b=b: [float(r["msRigid"]) for r in data
+                                if r["case"] == c and (r.get("backend") or "") == b and int(r["threads"]) == threads[0]])
+               for b in backends]
     fig, ax = plt.subplots(figsize=(9, 4.2))
-    labels = [f"{pathlib.Path(r['case']).name.split('-')[0]}, {r['bodies']} bodies\n{r['threads']} thr., "
-              f"{r.get('backend') or ''}" for r in data]
-    mag = [float(r["msMagnetic"]) for r in data]
-    rigid = [float(r["msRigid"]) for r in data]
-    x = range(len(data))
-    ax.bar(x, mag, label="magnetic (induction + wrenches)")
-    ax.bar(x, rigid, bottom=mag, label="rigid body")
-    ax.set_xticks(list(x))
-    ax.set_xticklabels(labels, fontsize=8)
-    ax.set_ylabel("ms per step")
-    ax.set_title("Cost per step of whole cases")
+    width = 0.8 / len(series)
+    for k, (label, values) in enumerate(series):
+        ys = [min(values(c)) if values(c) else float("nan") for c in cases]
+        ax.bar([i + (k - (len(series) - 1) / 2) * width for i in range(len(cases))], ys, width, label=label)
+    ax.set_yscale("log")
+    ax.set_xticks(range(len(cases)))
+    ax.set_xticklabels([f"{pathlib.Path(c).name}\n{next(r['bodies'] for r in data if r['case'] == c)} bodies"
+                        for c in cases], fontsize=8)
+    ax.set_ylabel("ms per step (log scale)")
+    ax.set_title("Cost per step of whole cases (20 steps from the start; table2)")
     ax.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(out / "table2.png", dpi=90)

@@ -6,7 +6,10 @@
 #include <magFoam/MeshPrimitives.hpp>
 #include <magFoam/ShapeFactory.hpp>
 
+#include <cstdlib>
 #include <map>
+
+#include <fmt/format.h>
 
 namespace mag::bench {
 
@@ -43,6 +46,23 @@ Vec3 exactCubeForce(const Body& lower, const Body& upper) {
     const Vec3 s1 = Vec3::Constant(std::cbrt(lower.shape->volume));
     const Vec3 s2 = Vec3::Constant(std::cbrt(upper.shape->volume));
     return oracle::akounYonnetForce(s1, lower.position, s2, upper.position, lower.material.Br, upper.material.Br);
+}
+
+std::filesystem::path scratchCase(const std::filesystem::path& src, const std::filesystem::path& dst,
+                                  const std::string& what) {
+    std::filesystem::remove_all(dst);
+    std::filesystem::create_directories(dst);
+    for (const char* sub : {"constant", "system"})
+        std::filesystem::copy(src / sub, dst / sub, std::filesystem::copy_options::recursive);
+    if (!std::filesystem::exists(src / "system/geometryDict.yaml")) return dst;
+    std::error_code ec;
+    const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
+    if (ec) throw std::runtime_error(what + ": cannot find this executable's folder (/proc/self/exe)");
+    const std::string cmd = fmt::format("'{}' -case '{}' > '{}' 2>&1", (self.parent_path() / "magMakeGeometry").string(),
+                                        dst.string(), (dst / "log.magMakeGeometry").string());
+    if (std::system(cmd.c_str()) != 0)
+        throw std::runtime_error(what + ": magMakeGeometry failed in " + dst.string() + " (see log.magMakeGeometry there)");
+    return dst;
 }
 
 } // namespace mag::bench

@@ -36,5 +36,12 @@ struct Configuration {
     Vec3 exactForce;
 };
 
+// A fresh copy of a case's constant/ and system/ (no time folders) at dst,
+// with its meshes made there by magMakeGeometry (the one beside this
+// executable) when it has system/geometryDict.yaml; `what` names the study in
+// errors. table2 runs cases from it so that nothing is written to them.
+std::filesystem::path scratchCase(const std::filesystem::path& src, const std::filesystem::path& dst,
+                                  const std::string& what);
+
 
 } // namespace mag::bench

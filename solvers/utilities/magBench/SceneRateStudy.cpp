@@ -31,14 +31,6 @@ namespace mag::bench {
 
 namespace {
 
-// magMakeGeometry beside this executable.
-std::filesystem::path siblingApp(const std::string& name) {
-    std::error_code ec;
-    const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
-    if (ec) throw std::runtime_error("table2 scenes: cannot find this executable's folder (/proc/self/exe)");
-    return self.parent_path() / name;
-}
-
 // Warnings only while it lives; the level before afterwards.
 struct QuietLog {
     spdlog::level::level_enum level = spdlog::get_level();
@@ -47,22 +39,6 @@ struct QuietLog {
     QuietLog(const QuietLog&) = delete;
     QuietLog& operator=(const QuietLog&) = delete;
 };
-
-// A fresh copy of the case's constant/ and system/ (no time folders).
-std::filesystem::path scratchCopy(const std::filesystem::path& src, const std::filesystem::path& dst) {
-    std::filesystem::remove_all(dst);
-    std::filesystem::create_directories(dst);
-    for (const char* sub : {"constant", "system"})
-        std::filesystem::copy(src / sub, dst / sub, std::filesystem::copy_options::recursive);
-    if (std::filesystem::exists(src / "system/geometryDict.yaml")) {
-        const std::string cmd = fmt::format("'{}' -case '{}' > '{}' 2>&1", siblingApp("magMakeGeometry").string(),
-                                            dst.string(), (dst / "log.magMakeGeometry").string());
-        if (std::system(cmd.c_str()) != 0)
-            throw std::runtime_error("table2 scenes: magMakeGeometry failed in " + dst.string() +
-                                     " (see log.magMakeGeometry there)");
-    }
-    return dst;
-}
 
 } // namespace
 
@@ -77,8 +53,9 @@ void sceneRateStudy(const Dict& scenes, const std::vector<int>& counts, const st
         if (!std::filesystem::is_directory(src / "system"))
             scenes.fail(name, "no case folder " + src.string() + " (a path relative to " + caseDir.string() + ")");
         for (int t : counts) {
-            const auto dir = scratchCopy(src, caseDir / "postProcessing" / "table2" /
-                                                  (src.filename().string() + "-threads" + std::to_string(t)));
+            const auto dir = scratchCase(
+                src, caseDir / "postProcessing" / "table2" / (src.filename().string() + "-threads" + std::to_string(t)),
+                "table2 scenes");
             Case c = Case::read(dir);
             setThreads(t);
             long steps = 0;

@@ -13,10 +13,14 @@
 //     backends: [ODE, Bullet]                             # default: each case's own
 //     scenes: {../fig6-twoCubes: 4.5}                     # whole runs (SceneRateStudy.cpp)
 //
-// A backend other than the case's gets the case's rigidBody.yaml keys that
-// both backends read alike (gravity, ground, contact friction, restitution and
-// bounceVelocity, subSteps, maxTravel, maxSubSteps) and its own defaults (table2
-// steps without sleeping).
+// A backend other than the case's runs the case's own file for it when it
+// ships one (constant/rigidBody.<type in lower case>.yaml, e.g.
+// rigidBody.bullet.yaml); otherwise it gets the case's rigidBody.yaml keys
+// that both backends read alike (gravity, ground, contact friction,
+// restitution and bounceVelocity, subSteps, maxTravel, maxSubSteps) and its
+// own defaults. table2 steps without sleeping. A case whose meshes are made
+// by magMakeGeometry (system/geometryDict.yaml) runs from a scratch copy in
+// postProcessing/table2Cases/<case>/.
 #include "BenchCommon.hpp"
 #include "Studies.hpp"
 #include "ThreadStudies.hpp"
@@ -25,11 +29,13 @@
 #include <magFoam/Log.hpp>
 #include <magFoam/MagneticSystem.hpp>
 #include <magFoam/RigidBodyBackend.hpp>
+#include <magFoam/SleepSettings.hpp>
 
 #include <ImplicitTorque.hpp>
 
 #include <yaml-cpp/yaml.h>
 
+#include <cctype>
 #include <chrono>
 #include <limits>
 #include <optional>
@@ -50,6 +56,22 @@ Dict rigidBodyAs(const Dict& own, const std::string& type) {
         for (const char* key : {"friction", "restitution", "bounceVelocity"})
             if (src["contact"][key]) n["contact"][key] = YAML::Clone(src["contact"][key]);
     return Dict::fromNode(n, own.file() + " (as " + type + ")");
+}
+
+// The backend dictionary `type` runs the case in `dir` with: the case's own,
+// its variant file for that type, or the shared keys (rigidBodyAs).
+Dict rigidBodyFor(const Case& c, const std::filesystem::path& dir, const std::string& type) {
+    if (c.rigidBody().get<std::string>("type") == type) return c.rigidBody();
+    std::string lower = type;
+    for (char& ch : lower) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    const auto variant = dir / "constant" / ("rigidBody." + lower + ".yaml");
+    if (!std::filesystem::exists(variant)) return rigidBodyAs(c.rigidBody(), type);
+    Dict d = Dict::fromFile(variant);
+    if (d.get<std::string>("type") != type)
+        d.fail("type", "the table2 variant for " + type + " must be of that type");
+    (void)SleepSettings::read(d);  // the solver's key: table2 steps without sleeping
+    spdlog::info("  {}: {} from constant/{}", c.dir().filename().string(), type, variant.filename().string());
+    return d;
 }
 
 } // namespace
@@ -77,7 +99,12 @@ void tableTwoStudy(const Dict& study, const std::filesystem::path& caseDir) {
     const RestoreThreads restore;
     auto csv = openCsv(caseDir, "table2.csv", "case,bodies,samples,threads,msMagnetic,msRigid,backend");
     for (const std::string& name : cases) {
-        const Case c = Case::read(caseDir / name);
+        const std::filesystem::path src = caseDir / name;
+        const std::filesystem::path dir =
+            std::filesystem::exists(src / "system/geometryDict.yaml")
+                ? scratchCase(src, caseDir / "postProcessing" / "table2Cases" / src.filename(), "table2")
+                : src;
+        const Case c = Case::read(dir);
         const MagneticSystem magnets(c);
         const double dt = c.control().deltaT;
         // Samples: on every body that MBM would sample (near pairs), per body.
@@ -97,7 +124,7 @@ void tableTwoStudy(const Dict& study, const std::filesystem::path& caseDir) {
         }
         std::vector<Dict> rigidBodies;
         if (backends.empty()) rigidBodies.push_back(c.rigidBody());
-        for (const std::string& type : backends) rigidBodies.push_back(rigidBodyAs(c.rigidBody(), type));
+        for (const std::string& type : backends) rigidBodies.push_back(rigidBodyFor(c, dir, type));
         for (const Dict& rigidBody : rigidBodies) {
             for (int t : counts) {
                 setThreads(t);
