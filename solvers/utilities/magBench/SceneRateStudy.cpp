@@ -25,7 +25,6 @@
 #include <Solver.hpp>
 
 #include <chrono>
-#include <cstdlib>
 
 namespace mag::bench {
 

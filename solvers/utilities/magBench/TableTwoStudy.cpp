@@ -18,9 +18,9 @@
 // rigidBody.bullet.yaml); otherwise it gets the case's rigidBody.yaml keys
 // that both backends read alike (gravity, ground, contact friction,
 // restitution and bounceVelocity, subSteps, maxTravel, maxSubSteps) and its
-// own defaults. table2 steps without sleeping. A case whose meshes are made
-// by magMakeGeometry (system/geometryDict.yaml) runs from a scratch copy in
-// postProcessing/table2Cases/<case>/.
+// own defaults. table2 steps without sleeping. Each case runs from a scratch
+// copy in postProcessing/table2Cases/<case>/ (its meshes made there where
+// magMakeGeometry makes them).
 #include "BenchCommon.hpp"
 #include "Studies.hpp"
 #include "ThreadStudies.hpp"
@@ -101,9 +101,7 @@ void tableTwoStudy(const Dict& study, const std::filesystem::path& caseDir) {
     for (const std::string& name : cases) {
         const std::filesystem::path src = caseDir / name;
         const std::filesystem::path dir =
-            std::filesystem::exists(src / "system/geometryDict.yaml")
-                ? scratchCase(src, caseDir / "postProcessing" / "table2Cases" / src.filename(), "table2")
-                : src;
+            scratchCase(src, caseDir / "postProcessing" / "table2Cases" / src.filename(), "table2");
         const Case c = Case::read(dir);
         const MagneticSystem magnets(c);
         const double dt = c.control().deltaT;
