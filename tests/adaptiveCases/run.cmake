@@ -2,10 +2,11 @@
 #  1. the dropMagnet scene from a 1 ms first step, maxDeltaT 10 ms, for 0.3 s:
 #     no audit warning, the cube at rest at the end, and a time folder on every
 #     write time (0.005 s apart) and on no other time;
-#  2. restart: 0 -> 0.1 s, then startFrom latestTime to 0.3 s, ends in the same
-#     state, bit for bit (bodies.yaml of 0.3), as the run in one go.
+#  2. restart: 0 -> SPLIT s (default 0.1: the cube at rest on the disc), then
+#     startFrom latestTime to 0.3 s, ends in the same state, bit for bit
+#     (bodies.yaml of 0.3), as the run in one go.
 # -DMAGFOAM=<exe> -DSRC=<case> -DWORK=<scratch dir> [-DCONTROL=<controlDict line>,
-# e.g. "magneticStiffness: implicit", appended to the case's]
+# e.g. "magneticStiffness: implicit", appended to the case's] [-DSPLIT=<write time>]
 include(${CMAKE_CURRENT_LIST_DIR}/../runStep.cmake)
 file(REMOVE_RECURSE ${WORK})
 file(COPY ${SRC}/ DESTINATION ${WORK}/whole)
@@ -49,7 +50,10 @@ if(NOT count EQUAL 61)
 endif()
 
 file(READ ${WORK}/restart/system/controlDict.yaml ctl)
-string(REPLACE "endTime: 0.3" "endTime: 0.1" first "${ctl}")
+if(NOT DEFINED SPLIT)
+  set(SPLIT 0.1)
+endif()
+string(REPLACE "endTime: 0.3" "endTime: ${SPLIT}" first "${ctl}")
 file(WRITE ${WORK}/restart/system/controlDict.yaml "${first}")
 step(${MAGFOAM} -case ${WORK}/restart)
 file(WRITE ${WORK}/restart/system/controlDict.yaml "${ctl}\nstartFrom: latestTime\n")
