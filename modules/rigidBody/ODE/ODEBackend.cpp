@@ -514,7 +514,13 @@ public:
                 // contact are solved again. dWorldStep solves islands apart,
                 // so the others would come out the same, bit for bit: they
                 // keep this solve and sit the second one out disabled.
-                stats_.frictionRedoneBodies += solveAgain(islandsOf([](const Made& m) { return m.starved; }), h);
+                const std::vector<char> redo = islandsOf([](const Made& m) { return m.starved; });
+                long bodies = 0;
+                if (!solveAgainUnlessGaining(redo, h, nullptr, &bodies)) {
+                    stats_.frictionUndone += 1;
+                    for (Made& m : made_) m.starved = false; // the rolling pass takes ODE's bounds
+                }
+                stats_.frictionRedoneBodies += bodies;
             }
             if (rolling) resistRolling(h);
             made_.clear();
@@ -705,8 +711,10 @@ public:
                << stats_.contactsFound << ", clipped from convex faces " << stats_.contactsClipped << ", dropped "
                << stats_.contactsDropped << ", merged " << stats_.contactsMerged
                << ", used " << stats_.contactsUsed << "; sub-steps solved again for friction "
-               << stats_.frictionRedone << " (bodies in them " << stats_.frictionRedoneBodies << ")";
-            if (rolling_) os << ", for rolling friction " << stats_.rollingRedone;
+               << stats_.frictionRedone << " (bodies in them " << stats_.frictionRedoneBodies << "; undone, "
+               << "as they added kinetic energy, " << stats_.frictionUndone << ")";
+            if (rolling_)
+                os << ", for rolling friction " << stats_.rollingRedone << " (undone " << stats_.rollingUndone << ")";
         }
         return os.str();
     }
@@ -716,7 +724,8 @@ public:
         long contactsFound = 0, contactsDropped = 0, contactsMerged = 0, contactsUsed = 0;
         long contactsClipped = 0; // face contacts clipped from libccd's one point per convex pair
         long frictionRedone = 0, frictionRedoneBodies = 0; // sub-steps solved again, bodies in them
-        long rollingRedone = 0;                            // sub-steps solved again with rolling friction
+        long frictionUndone = 0; // second solves undone: they added kinetic energy
+        long rollingRedone = 0, rollingUndone = 0;         // sub-steps solved again with rolling friction, undone
         long steps = 0, subSteps = 0;
     };
 
@@ -932,7 +941,27 @@ private:
         stats_.rollingRedone += 1;
         // The islands of the bodies with a torque are solved again.
         auto turned = [&](dBodyID b) { return b && rollingTorque_[entryOf(b)].squaredNorm() > 0; };
-        solveAgain(islandsOf([&](const Made& m) { return turned(m.b1) || turned(m.b2); }), h, &rollingTorque_);
+        if (!solveAgainUnlessGaining(islandsOf([&](const Made& m) { return turned(m.b1) || turned(m.b2); }), h,
+                                     &rollingTorque_))
+            stats_.rollingUndone += 1;
+    }
+    // solveAgain, undone where it leaves the bodies solved again with more
+    // kinetic energy than the solve before: the friction taken again and the
+    // rolling torque only resist motion, so they can only take energy out.
+    // Their fixed bounds (the first solve's normal forces) can do the
+    // opposite where contacts push a wedge apart: a Fig. 8 clip struck by a
+    // spinning one left at 1 m/s, the pair's kinetic energy 14x what it had
+    // (docs/rigid-bodies.md#friction-bounds). Returns false when undone.
+    bool solveAgainUnlessGaining(const std::vector<char>& redo, double h, const std::vector<Vec3>* torque,
+                                 long* bodies = nullptr) {
+        capture(lastSolve_);
+        const double before = kineticEnergy(redo);
+        const long n = solveAgain(redo, h, torque);
+        if (bodies) *bodies = n;
+        if (!(kineticEnergy(redo) > before * (1 + 1e-9))) return true;
+        for (std::size_t k = 0; k < redo.size(); ++k)
+            if (redo[k] && lastSolve_[k].body) restore(lastSolve_[k]);
+        return false;
     }
     // A contact's force as solved (its feedback), on geom 1's side. f1 is the
     // force on the joint's first body; ODE attaches a joint given (none,
@@ -980,6 +1009,25 @@ private:
         for (std::size_t k = 0; k < saved_.size(); ++k)
             if (wasEnabled[k]) dBodyEnable(saved_[k].body);
         return count;
+    }
+    // The kinetic energy of the bodies marked in `which` (per entry), as ODE
+    // has them now.
+    double kineticEnergy(const std::vector<char>& which) const {
+        double e = 0;
+        for (std::size_t k = 0; k < entries_.size() && k < which.size(); ++k) {
+            const dBodyID body = entries_[k].body;
+            if (!which[k] || !body) continue;
+            dMass mass;
+            dBodyGetMass(body, &mass);
+            const dReal* v = dBodyGetLinearVel(body);
+            Mat3 I, R;
+            const dReal* r = dBodyGetRotation(body);
+            for (int i = 0; i < 3; ++i)
+                for (int j = 0; j < 3; ++j) I(i, j) = mass.I[4 * i + j], R(i, j) = r[4 * i + j];
+            const Vec3 w = spinOf(body);
+            e += 0.5 * mass.mass * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) + 0.5 * w.dot(R * I * R.transpose() * w);
+        }
+        return e;
     }
     static Vec3 spinOf(dBodyID body) {
         if (!body) return Vec3::Zero();
@@ -1051,12 +1099,13 @@ private:
         dReal position[3], quaternion[4], velocity[3], spin[3], force[3], torque[3];
         int enabled;
     };
-    std::vector<Saved> saved_;
-    void snapshot() {
-        saved_.resize(entries_.size());
+    std::vector<Saved> saved_, lastSolve_;
+    void snapshot() { capture(saved_); }
+    void capture(std::vector<Saved>& into) const {
+        into.resize(entries_.size());
         for (std::size_t i = 0; i < entries_.size(); ++i) {
             const Entry& e = entries_[i];
-            Saved& s = saved_[i];
+            Saved& s = into[i];
             s.body = e.body;
             if (!e.body) continue;
             const dReal *x = dBodyGetPosition(e.body), *q = dBodyGetQuaternion(e.body), *v = dBodyGetLinearVel(e.body),
