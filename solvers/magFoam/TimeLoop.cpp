@@ -237,6 +237,13 @@ void RunStatistics::induction(long step, const InductionReport& ind) {
 
 void RunStatistics::progress(double t, long step, double deltaT, std::string_view limitedBy,
                              std::string_view body) {
+    if (deltaT > 0 && !limitedBy.empty()) {
+        auto it = limits_.find(limitedBy);
+        if (it == limits_.end()) it = limits_.emplace(std::string(limitedBy), Limit{}).first;
+        ++it->second.steps;
+        it->second.time += deltaT;
+        if (!body.empty()) ++it->second.bodies[std::string(body)];
+    }
     if (seconds<Clock>(lastReport_) <= 5.0) return;
     lastReport_ = Clock::now();
     const double wall = seconds<Clock>(start_), rate = done_ / wall;
@@ -260,6 +267,22 @@ void RunStatistics::summary() const {
     if (soft_)
         spdlog::info("  induction: {:.2f} sweeps per step on average, {} at most (postProcessing/induction.csv)",
                      double(sweepsTotal_) / done_, sweepsMax_);
+    if (limits_.empty()) return;
+    // Most steps first; each with the body that set it most often.
+    std::vector<std::pair<std::string, const Limit*>> order;
+    for (const auto& [name, limit] : limits_) order.emplace_back(name, &limit);
+    std::stable_sort(order.begin(), order.end(),
+                     [](const auto& a, const auto& b) { return a.second->steps > b.second->steps; });
+    std::string line;
+    for (const auto& [name, limit] : order) {
+        std::string most;
+        long mostSteps = 0;
+        for (const auto& [body, n] : limit->bodies)
+            if (n > mostSteps) most = body, mostSteps = n;
+        line += fmt::format("{}{} {} ({:.3g} s{})", line.empty() ? "" : ", ", name, limit->steps, limit->time,
+                            most.empty() ? "" : fmt::format("; {} in {}", most, mostSteps));
+    }
+    spdlog::info("  steps set by: {}", line);
 }
 
 } // namespace mag::solver

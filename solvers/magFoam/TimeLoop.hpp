@@ -22,6 +22,7 @@
 #include <filesystem>
 #include <optional>
 #include <string_view>
+#include <map>
 #include <vector>
 
 namespace mag::solver {
@@ -109,7 +110,9 @@ public:
     // "(growth)" etc., + induction sweeps per step).
     void progress(double t, long step, double deltaT = 0, std::string_view limitedBy = {},
                   std::string_view body = {});
-    // "End: ... steps in ... s; ms per step: ..." and the induction summary.
+    // "End: ... steps in ... s; ms per step: ..." and the induction summary;
+    // with adaptive steps, how many steps (and how much simulated time) each
+    // criterion set, and the body that set it most often.
     void summary() const;
 
 private:
@@ -124,6 +127,13 @@ private:
     long done_ = 0, unconvergedSteps_ = 0;
     long sweepsTotal_ = 0, sweepsSinceReport_ = 0, stepsSinceReport_ = 0;
     int sweepsMax_ = 0;
+    // Adaptive steps: per criterion, steps, simulated time and steps per body.
+    struct Limit {
+        long steps = 0;
+        double time = 0;
+        std::map<std::string, long> bodies;
+    };
+    std::map<std::string, Limit, std::less<>> limits_;
 };
 
 } // namespace mag::solver

@@ -1,7 +1,8 @@
 # Adaptive time steps (docs/dynamics.md#adaptive-time-step), scripted:
 #  1. the dropMagnet scene from a 1 ms first step, maxDeltaT 10 ms, for 0.3 s:
 #     no audit warning, the cube at rest at the end, and a time folder on every
-#     write time (0.005 s apart) and on no other time;
+#     write time (0.005 s apart) and on no other time; the summary's
+#     "steps set by:" counts each step once;
 #  2. restart: 0 -> SPLIT s (default 0.1: the cube at rest on the disc), then
 #     startFrom latestTime to 0.3 s, ends in the same state, bit for bit
 #     (bodies.yaml of 0.3), as the run in one go.
@@ -22,6 +23,24 @@ if(STEP_OUT MATCHES "Warning")
 endif()
 if(NOT STEP_OUT MATCHES "1 of 1 dynamic bodies at rest at the end")
   message(FATAL_ERROR "the cube is not at rest at the end:\n${STEP_OUT}")
+endif()
+# The summary's "steps set by:" counts every step once.
+if(NOT STEP_OUT MATCHES "End: ([0-9]+) steps")
+  message(FATAL_ERROR "no End: line:\n${STEP_OUT}")
+endif()
+set(steps ${CMAKE_MATCH_1})
+if(NOT STEP_OUT MATCHES "steps set by: ([^\n]*)")
+  message(FATAL_ERROR "no 'steps set by:' line:\n${STEP_OUT}")
+endif()
+set(limits "${CMAKE_MATCH_1}")
+string(REGEX MATCHALL "[a-z]+ [0-9]+ \\(" counts "${limits}")
+set(sum 0)
+foreach(c IN LISTS counts)
+  string(REGEX REPLACE "[a-z]+ ([0-9]+) \\(" "\\1" n "${c}")
+  math(EXPR sum "${sum} + ${n}")
+endforeach()
+if(NOT sum EQUAL steps OR NOT limits MATCHES "stiffness [0-9]+ \\([0-9.e-]+ s; cube in [0-9]+\\)")
+  message(FATAL_ERROR "'steps set by:' counts ${sum} steps of ${steps}: ${limits}")
 endif()
 foreach(k RANGE 0 60)
   math(EXPR ms "${k} * 5")
