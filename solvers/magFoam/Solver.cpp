@@ -139,7 +139,6 @@ void run(Case& c, const RunOptions& options) {
     double lastDeltaT = start.lastDeltaT > 0 ? start.lastDeltaT : c.control().deltaT;
     StepAudit audit(bodies, auditSettings, magnets.fieldEvaluator().forceTolerance(), gravity);
     audit.restoreNetAcceleration(bodies, start.netAcceleration);
-    audit.restoreLastWrench(bodies, start.lastWrench, start.lastDeltaT);
     auto write = [&](const std::vector<Body>& state, double t, long step, bool withModels) {
         magnets.setTime(t);
         std::vector<StateFile> states;

@@ -22,12 +22,6 @@ constexpr double kRoundingFloor = 1e-9; // of |energies| in play: what the audit
 // (dropMagnet tutorial), at half 3e-4 of the peak.
 constexpr double kProposalTravel = 0.5;
 constexpr double kStepsPerPeriod = 20; // safe step: this many per magnetic oscillation
-// Adaptive steps: a body whose wrench changes by less than kWrenchChange of
-// its size per step may travel up to kFieldTravel x the audit's travel (the
-// audit then warns only above that). Fig. 8's clips: a third of the steps,
-// the same end and energy (docs/dynamics.md#adaptive-time-step).
-constexpr double kFieldTravel = 4.0;
-constexpr double kWrenchChange = 0.1;
 
 double angleBetween(const Quat& a, const Quat& b) {
     const double c = std::min(1.0, std::abs(a.dot(b)));
@@ -45,31 +39,9 @@ double surfaceRate(const std::array<Vec3, 8>& corners, const Vec3& axis) {
     return r;
 }
 
-// The relative change per second of a body's magnetic wrench over its last
-// step (force against the larger of |F| and its weight, torque against the
-// larger of |tau| and weight x smallest dimension): the adaptive step's
-// measure of how fast its field changes along its path. Infinity when the last
-// step is unknown (the first step; a body waking).
-double wrenchChangeRate(const Wrench& now, const Vec3& lastForce, const Vec3& lastTorque, double lastDeltaT,
-                        double weight, double size) {
-    if (!(lastDeltaT > 0)) return std::numeric_limits<double>::infinity();
-    const Vec3 T = now.totalTorque();
-    const double forceScale = std::max(now.force.norm(), weight);
-    const double torqueScale = std::max(T.norm(), weight * size);
-    double rate = 0;
-    const double dF = (now.force - lastForce).norm(), dT = (T - lastTorque).norm();
-    if (dF > 0) rate = std::max(rate, forceScale > 0 ? dF / forceScale : std::numeric_limits<double>::infinity());
-    if (dT > 0) rate = std::max(rate, torqueScale > 0 ? dT / torqueScale : std::numeric_limits<double>::infinity());
-    return rate / lastDeltaT;
-}
-
-// stableDeltaT for one body (see the header); `limit` names the criterion that
-// set it. `fieldStep`: the step over which its wrench would change by
-// kWrenchChange at its last step's rate (0: unknown); up to that, the body
-// may travel kFieldTravel x `travel` instead of `travel`.
+// stableDeltaT for one body (see the header); `limit` names the criterion that set it.
 double bodyStableDeltaT(const Body& b, const BodyGeometry& g, const Wrench& w, double travel,
-                        bool implicitTilt = false, const char** limit = nullptr, const NetAcceleration* net = nullptr,
-                        double fieldStep = 0) {
+                        bool implicitTilt = false, const char** limit = nullptr, const NetAcceleration* net = nullptr) {
     double dt = std::numeric_limits<double>::infinity();
     const char* why = "";
     auto take = [&](double candidate, const char* name) {
@@ -77,8 +49,8 @@ double bodyStableDeltaT(const Body& b, const BodyGeometry& g, const Wrench& w, d
     };
     // Travel of the centre and of the surface in a step: v dt + a dt^2 <= travel size
     // (the backends' semi-implicit Euler moves by the new velocity, v + a dt).
-    auto within = [&](double v, double a, double fraction) {
-        const double d = fraction * g.size;
+    auto within = [&](double v, double a) {
+        const double d = travel * g.size;
         if (a > 0) return 2.0 * d / (v + std::sqrt(v * v + 4.0 * a * d));
         return v > 0 ? d / v : std::numeric_limits<double>::infinity();
     };
@@ -86,35 +58,16 @@ double bodyStableDeltaT(const Body& b, const BodyGeometry& g, const Wrench& w, d
     // the net acceleration of the last step, where known, bounds it.
     double a = w.force.norm() / b.mass();
     if (net) a = std::min(a, net->linear.norm());
+    take(within(b.velocity.norm(), a), "travel");
     // The surface's speed and acceleration from the spin and the magnetic
     // torque (I^-1 tau: a clip's torque about its long axis meets its smallest
     // inertia, about its normal its largest), in the body frame.
     const Quat toBody = b.orientation.conjugate();
-    const double surfaceSpeed = surfaceRate(g.corners, toBody * b.angularVelocity);
-    double surfaceAcceleration = surfaceRate(g.corners, g.inverseInertia * (toBody * w.totalTorque()));
+    const Vec3 spin = toBody * b.angularVelocity;
+    const Vec3 alpha = g.inverseInertia * (toBody * w.totalTorque());
+    double surfaceAcceleration = surfaceRate(g.corners, alpha);
     if (net) surfaceAcceleration = std::min(surfaceAcceleration, surfaceRate(g.corners, toBody * net->angular));
-    const double speed = b.velocity.norm();
-    auto motion = [&](double fraction, const char** name) {
-        const double travelStep = within(speed, a, fraction), turnStep = within(surfaceSpeed, surfaceAcceleration, fraction);
-        *name = travelStep <= turnStep ? "travel" : "turn";
-        return std::min(travelStep, turnStep);
-    };
-    // The travel guards the contacts (a wire must not pass a wire) and, as
-    // long as the field's change along the path is not known, the field. Where
-    // the wrench changed slowly over the last step, the body may go further:
-    // never less far than `travel`, never further than kFieldTravel x it
-    // (docs/dynamics.md#adaptive-time-step).
-    const char* baseName = "";
-    const double base = motion(travel, &baseName);
-    double moving = base;
-    const char* movingName = baseName;
-    if (fieldStep > base) {
-        const char* extendedName = "";
-        const double extended = motion(kFieldTravel * travel, &extendedName);
-        if (extended <= fieldStep) moving = extended, movingName = extendedName;
-        else moving = fieldStep, movingName = "wrench change";
-    }
-    take(moving, movingName);
+    take(within(surfaceRate(g.corners, spin), surfaceAcceleration), "turn");
     const double twoPi = 2.0 * pi;
     const double forceOmega2 = w.force.norm() / (b.mass() * g.size);
     if (forceOmega2 > 0) take(twoPi / std::sqrt(forceOmega2) / kStepsPerPeriod, "force stiffness");
@@ -219,11 +172,6 @@ std::optional<std::string> StepAudit::check(long step, double t, double dt, cons
         for (const Vec3& c : k.geometry.corners)
             arc = std::max(arc, (b.orientation * c - before[i].orientation * c).norm());
         const double moved = std::max(travel, arc) / k.geometry.size;
-        // It may move further where its wrench changes slowly (the proposal's rule).
-        const double weight = b.mass() * gravity_.norm();
-        const bool slowField = wrenchChangeRate(wrenches[i], k.previousForce, k.previousTorque, k.previousDeltaT,
-                                                weight, k.geometry.size) * dt <= kWrenchChange * (1 + 1e-9);
-        const double allowed = slowField ? kFieldTravel * settings_.travel : settings_.travel;
 
         // Safe step: the proposal's criteria at the full travel, and 1/20 of
         // the magnetic oscillation's period from the stiffness between the last
@@ -249,10 +197,9 @@ std::optional<std::string> StepAudit::check(long step, double t, double dt, cons
         k.previousOrientation = before[i].orientation;
         k.previousForce = F;
         k.previousTorque = T;
-        k.previousDeltaT = dt;
         if (safe < worstSafe) worstSafe = safe, worst = i;
 
-        if (moved > allowed) {
+        if (moved > settings_.travel) {
             k.quietSteps = 0;
             if (!k.warned) {
                 k.warned = true;
@@ -299,38 +246,28 @@ StepProposal StepAudit::stableDeltaT(const std::vector<Body>& bodies, const std:
         const Body& b = bodies[i];
         const bool resting = b.velocity.norm() + surfaceRate(k.geometry.corners, b.orientation.conjugate() *
                                                                                      b.angularVelocity) < kRestSpeed;
-        const double rate = wrenchChangeRate(wrenches[i], k.previousForce, k.previousTorque, k.previousDeltaT,
-                                             b.mass() * gravity_.norm(), k.geometry.size);
-        const double fieldStep = rate > 0 ? kWrenchChange / rate : std::numeric_limits<double>::infinity();
         const double dt = bodyStableDeltaT(b, k.geometry, wrenches[i], kProposalTravel * settings_.travel,
-                                           implicitTilt, &limit, k.haveNet && resting ? &k.net : nullptr, fieldStep);
+                                           implicitTilt, &limit, k.haveNet && resting ? &k.net : nullptr);
         if (dt < p.deltaT) p.deltaT = dt, p.body = i, p.limit = limit;
     }
     return p;
 }
 
 std::string StepAudit::netAccelerationState(const std::vector<Body>& bodies) const {
-    auto section = [&](const char* header, auto has, auto values) {
-        std::string out;
-        for (std::size_t i = 0; i < bodies.size(); ++i) {
-            const Track& k = tracks_[i];
-            if (bodies[i].fixed || !has(k)) continue;
-            if (out.empty()) out = header;
-            const auto [a, w] = values(k);
-            out += "  " + bodies[i].name + ": [" + formatExact(a.x()) + ", " + formatExact(a.y()) + ", " +
-                   formatExact(a.z()) + ", " + formatExact(w.x()) + ", " + formatExact(w.y()) + ", " +
-                   formatExact(w.z()) + "]\n";
-        }
-        return out;
-    };
-    return section("# each body's acceleration over the last step, contacts included (m/s^2, rad/s^2):\n"
-                   "# the next step's proposal (docs/dynamics.md#adaptive-time-step)\nnetAcceleration:\n",
-                   [](const Track& k) { return k.haveNet; },
-                   [](const Track& k) { return std::pair<Vec3, Vec3>(k.net.linear, k.net.angular); }) +
-           section("# each body's magnetic force and torque at the start of the last step (N, N m):\n"
-                   "# the wrench's change, the next step's proposal\nlastWrench:\n",
-                   [](const Track& k) { return k.previousDeltaT > 0; },
-                   [](const Track& k) { return std::pair<Vec3, Vec3>(k.previousForce, k.previousTorque); });
+    std::string out;
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        const Track& k = tracks_[i];
+        if (bodies[i].fixed || !k.haveNet) continue;
+        if (out.empty())
+            out = "# each body's acceleration over the last step, contacts included (m/s^2, rad/s^2):\n"
+                  "# the next step's proposal (docs/dynamics.md#adaptive-time-step)\nnetAcceleration:\n";
+        const Vec3& a = k.net.linear;
+        const Vec3& w = k.net.angular;
+        out += "  " + bodies[i].name + ": [" + formatExact(a.x()) + ", " + formatExact(a.y()) + ", " +
+               formatExact(a.z()) + ", " + formatExact(w.x()) + ", " + formatExact(w.y()) + ", " +
+               formatExact(w.z()) + "]\n";
+    }
+    return out;
 }
 
 void StepAudit::restoreNetAcceleration(const std::vector<Body>& bodies,
@@ -341,18 +278,6 @@ void StepAudit::restoreNetAcceleration(const std::vector<Body>& bodies,
                 tracks_[i].net.linear = Vec3(v[0], v[1], v[2]);
                 tracks_[i].net.angular = Vec3(v[3], v[4], v[5]);
                 tracks_[i].haveNet = true;
-            }
-}
-
-void StepAudit::restoreLastWrench(const std::vector<Body>& bodies,
-                                  const std::vector<std::pair<std::string, std::array<double, 6>>>& saved,
-                                  double lastDeltaT) {
-    for (const auto& [name, v] : saved)
-        for (std::size_t i = 0; i < bodies.size(); ++i)
-            if (bodies[i].name == name) {
-                tracks_[i].previousForce = Vec3(v[0], v[1], v[2]);
-                tracks_[i].previousTorque = Vec3(v[3], v[4], v[5]);
-                tracks_[i].previousDeltaT = lastDeltaT;
             }
 }
 

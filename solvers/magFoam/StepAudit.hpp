@@ -10,8 +10,7 @@
 // - motion: each dynamic body's travel in the step, and the farthest its
 //   surface moves by the step's turn (a corner of its body-frame bounding
 //   box), against its smallest dimension (the smallest edge of that box); it
-//   warns above `travel`, or above kFieldTravel x `travel` where its wrench
-//   changes slowly (stableDeltaT's rule).
+//   warns above `travel`.
 // Each warning names the body, the step and a time step that would be safe:
 // the smaller of stableDeltaT's criteria at the full `travel` and 1/20 of the
 // period of the magnetic oscillation from the stiffness the last two steps
@@ -95,26 +94,18 @@ public:
     // body's magnetic energy U and force F (a moment tilts with stiffness |U|
     // about the axes normal to it, lambda = BodyGeometry::tiltCompliance; its
     // force changes on the scale of its size). Infinity when nothing moves or
-    // pulls. Where a body's wrench changed by less than kWrenchChange of its
-    // size over its last step (scaled to the new one), its travel may grow up
-    // to kFieldTravel x, never below the plain travel (docs/dynamics.md,
-    // "The wrench-change rule"). With implicitTilt (magneticStiffness:
-    // implicit, ImplicitTorque.hpp) the tilt term is left out (the backend
-    // integrates it implicitly).
+    // pulls. With implicitTilt (magneticStiffness: implicit, ImplicitTorque.hpp)
+    // the tilt term is left out (the backend integrates it implicitly).
     StepProposal stableDeltaT(const std::vector<Body>& bodies, const std::vector<Wrench>& wrenches,
                               bool implicitTilt = false) const;
 
     // Adaptive steps: the proposal takes a body's acceleration over the last
-    // step (contacts included) where it is below the magnetic one, and its
-    // wrench's change over the last step, so both are part of the restart
-    // state: timeStep.yaml lines ("netAcceleration:", "lastWrench:"), read
-    // back (TimeLoop.hpp Start) and restored here with the last step's length.
+    // step (contacts included) where it is below the magnetic one, so it is
+    // part of the restart state: timeStep.yaml lines ("netAcceleration:"),
+    // and read back (TimeLoop.hpp Start::netAcceleration).
     std::string netAccelerationState(const std::vector<Body>& bodies) const;
     void restoreNetAcceleration(const std::vector<Body>& bodies,
                                 const std::vector<std::pair<std::string, std::array<double, 6>>>& saved);
-    void restoreLastWrench(const std::vector<Body>& bodies,
-                           const std::vector<std::pair<std::string, std::array<double, 6>>>& saved,
-                           double lastDeltaT);
 
     // What the run saw (tests).
     int warnings() const { return warnings_; }
@@ -130,9 +121,6 @@ private:
         NetAcceleration net;
         Vec3 previousPosition = Vec3::Zero(), previousForce = Vec3::Zero(), previousTorque = Vec3::Zero();
         Quat previousOrientation = Quat::Identity();
-        // The last step's length, with previousForce/Torque (its start's
-        // wrench) the adaptive step's wrench change; restart state (0: unknown).
-        double previousDeltaT = 0;
         int quietSteps = 0;
         bool warned = false;
     };

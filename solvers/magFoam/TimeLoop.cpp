@@ -111,23 +111,18 @@ Start startRun(const Case& c, std::vector<Body>& bodies, MagneticSystem& magnets
         const Dict d = Dict::fromFile(file);
         s.lastDeltaT = d.get<double>("deltaT");
         if (!(s.lastDeltaT > 0)) d.fail("deltaT", "the last step's length must be > 0 (seconds)");
-        // Per body six exact numbers (StepAudit's proposal state).
-        auto perBody = [&](const char* key, const char* expected, auto& into) {
-            if (!d.has(key)) return;
-            const Dict n = d.sub(key);
+        if (d.has("netAcceleration")) {
+            const Dict n = d.sub("netAcceleration");
             for (const std::string& name : n.keys()) {
                 if (std::none_of(bodies.begin(), bodies.end(), [&](const Body& b) { return b.name == name; }))
                     n.fail(name, "no body of that name in constant/bodies.yaml");
                 const auto v = n.get<std::vector<double>>(name);
                 if (v.size() != 6 || !std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); }))
-                    n.fail(name, std::string("6 finite numbers expected: ") + expected);
-                into.push_back({name, {v[0], v[1], v[2], v[3], v[4], v[5]}});
+                    n.fail(name, "6 finite numbers expected: the body's acceleration (m/s^2) and angular "
+                                 "acceleration (rad/s^2) over the last step");
+                s.netAcceleration.push_back({name, {v[0], v[1], v[2], v[3], v[4], v[5]}});
             }
-        };
-        perBody("netAcceleration",
-                "the body's acceleration (m/s^2) and angular acceleration (rad/s^2) over the last step",
-                s.netAcceleration);
-        perBody("lastWrench", "the magnetic force (N) and torque (N m) at the start of the last step", s.lastWrench);
+        }
         d.reportUnused();
     }
     return s;

@@ -37,9 +37,6 @@ struct Start {
     // Adaptive steps: the bodies' accelerations over the last step, contacts
     // included (linear m/s^2, angular rad/s^2; StepAudit::restoreNetAcceleration).
     std::vector<std::pair<std::string, std::array<double, 6>>> netAcceleration;
-    // and the magnetic wrench at its start (force N, torque N m about the
-    // centre of mass; StepAudit::restoreLastWrench).
-    std::vector<std::pair<std::string, std::array<double, 6>>> lastWrench;
 };
 
 // startTime, or with startFrom: latestTime the newest time folder: its
