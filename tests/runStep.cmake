@@ -7,3 +7,12 @@ function(step)
   endif()
   set(STEP_OUT "${out}${err}" PARENT_SCOPE)
 endfunction()
+
+# expect_output(REGEX what): STEP_OUT must match REGEX, else stop with `what`
+# and the output. STEP_MATCH holds the regex's first group.
+function(expect_output regex what)
+  if(NOT STEP_OUT MATCHES "${regex}")
+    message(FATAL_ERROR "${what}:\n${STEP_OUT}")
+  endif()
+  set(STEP_MATCH "${CMAKE_MATCH_1}" PARENT_SCOPE)
+endfunction()

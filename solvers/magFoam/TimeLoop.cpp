@@ -237,7 +237,13 @@ void RunStatistics::progress(double t, long step, double deltaT, std::string_vie
         if (it == limits_.end()) it = limits_.emplace(std::string(limitedBy), Limit{}).first;
         ++it->second.steps;
         it->second.time += deltaT;
-        if (!body.empty()) ++it->second.bodies[std::string(body)];
+        if (!body.empty()) {
+            // Found without a copy of the name: no allocation per step.
+            auto& bodies = it->second.bodies;
+            auto b = bodies.find(body);
+            if (b == bodies.end()) b = bodies.emplace(std::string(body), 0).first;
+            ++b->second;
+        }
     }
     if (seconds<Clock>(lastReport_) <= 5.0) return;
     lastReport_ = Clock::now();

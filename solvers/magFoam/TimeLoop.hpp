@@ -20,9 +20,10 @@
 #include <array>
 #include <chrono>
 #include <filesystem>
-#include <optional>
-#include <string_view>
 #include <map>
+#include <optional>
+#include <string>
+#include <string_view>
 #include <vector>
 
 namespace mag::solver {
@@ -128,7 +129,7 @@ private:
     struct Limit {
         long steps = 0;
         double time = 0;
-        std::map<std::string, long> bodies;
+        std::map<std::string, long, std::less<>> bodies;
     };
     std::map<std::string, Limit, std::less<>> limits_;
 };

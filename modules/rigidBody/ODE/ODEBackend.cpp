@@ -724,7 +724,7 @@ public:
         long contactsFound = 0, contactsDropped = 0, contactsMerged = 0, contactsUsed = 0;
         long contactsClipped = 0; // face contacts clipped from libccd's one point per convex pair
         long frictionRedone = 0, frictionRedoneBodies = 0; // sub-steps solved again, bodies in them
-        long frictionUndone = 0; // second solves undone: they added kinetic energy
+        long frictionUndone = 0;                           // second solves undone: they added kinetic energy
         long rollingRedone = 0, rollingUndone = 0;         // sub-steps solved again with rolling friction, undone
         long steps = 0, subSteps = 0;
     };
@@ -1022,15 +1022,10 @@ private:
         for (std::size_t k = 0; k < entries_.size() && k < which.size(); ++k) {
             const dBodyID body = entries_[k].body;
             if (!which[k] || !body) continue;
-            dMass mass;
-            dBodyGetMass(body, &mass);
+            const MassFrame f = massFrame(body);
             const dReal* v = dBodyGetLinearVel(body);
-            Mat3 I, R;
-            const dReal* r = dBodyGetRotation(body);
-            for (int i = 0; i < 3; ++i)
-                for (int j = 0; j < 3; ++j) I(i, j) = mass.I[4 * i + j], R(i, j) = r[4 * i + j];
-            const Vec3 w = spinOf(body);
-            e += 0.5 * mass.mass * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) + 0.5 * w.dot(R * I * R.transpose() * w);
+            const Vec3 w = f.R.transpose() * spinOf(body); // body frame
+            e += 0.5 * f.mass * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) + 0.5 * w.dot(f.I * w);
         }
         return e;
     }
@@ -1042,13 +1037,23 @@ private:
     // World-frame inverse inertia of a body as ODE has it now (zero: fixed).
     static Mat3 inverseInertia(dBodyID body) {
         if (!body || !dBodyIsEnabled(body)) return Mat3::Zero();
+        const MassFrame f = massFrame(body);
+        return f.R * f.I.inverse() * f.R.transpose();
+    }
+    // A body's mass, body-frame inertia about its centre of mass and
+    // rotation, as ODE has them now.
+    struct MassFrame {
+        double mass;
+        Mat3 I, R;
+    };
+    static MassFrame massFrame(dBodyID body) {
         dMass mass;
         dBodyGetMass(body, &mass);
-        Mat3 I, R;
+        MassFrame f{mass.mass, Mat3(), Mat3()};
         const dReal* r = dBodyGetRotation(body);
         for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j) I(i, j) = mass.I[4 * i + j], R(i, j) = r[4 * i + j];
-        return R * I.inverse() * R.transpose();
+            for (int j = 0; j < 3; ++j) f.I(i, j) = mass.I[4 * i + j], f.R(i, j) = r[4 * i + j];
+        return f;
     }
     // A made contact as solved again: a starved one with its friction
     // bounded by mu times the normal force found (markStarvedFriction).
