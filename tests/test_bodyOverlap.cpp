@@ -3,7 +3,10 @@
 // a face) are not; a crossing with no vertex inside is found through its edges.
 #include "bodyFixture.hpp"
 
+#include "PartShapes.hpp"
+
 #include <magFoam/BodyOverlap.hpp>
+#include <magFoam/ShapeFactory.hpp>
 
 #include <catch2/catch.hpp>
 
@@ -67,6 +70,39 @@ TEST_CASE("overlaps: two bars crossing like a plus sign, no vertex inside, are f
     // Lifted clear of each other: none.
     CHECK(mag::findOverlaps(two(x, magnet("y", bar, Vec3(0, 0, 0.0021), Vec3(1, 0, 0), axisAngle(90, Vec3(0, 0, 1)))))
               .empty());
+}
+
+// A ring's (a washer's, a paperclip's) centre of mass lies in empty space,
+// where another body may pass without touching it: a rod through a washer's
+// hole is not inside it, though the washer's centre is inside the rod. Two
+// identical rings at one place still are (a point of the material inside).
+// (Fig. 8: a clip resting with another's wire through its centre of mass was
+// reported 0.2 mm sunk in, the depth of that point in the wire.)
+TEST_CASE("overlaps: a rod through a washer's hole is not inside it, washers or clips at one place are",
+          "[overlap]") {
+    const auto washer = mag::makeShape(mag::makeWasher(0.010, 0.0053, 0.001, 32), mag::ShapeKind{});
+    const auto w = magnet("w", washer, Vec3::Zero(), Vec3(0, 0, 1));
+    // Rod of 1 mm radius along the washer's axis: 1.65 mm clear of the hole's rim.
+    const auto rod = mag::makeShape(mag::makeRod(0.001, 0.03, 24), mag::ShapeKind{});
+    CHECK(mag::findOverlaps(two(w, magnet("r", rod, Vec3::Zero(), Vec3(1, 0, 0), axisAngle(90, Vec3(0, 1, 0)))))
+              .empty());
+    // Shifted by 2 mm, the rod cuts through the ring's material.
+    CHECK(mag::findOverlaps(two(w, magnet("r", rod, Vec3(0.002, 0, 0), Vec3(1, 0, 0), axisAngle(90, Vec3(0, 1, 0)))))
+              .size() == 1);
+    // Identical washers at one place: every vertex and face centroid lies on the
+    // other's surface; the inner point, mid-thickness under the largest
+    // triangle (a face of the annulus), is half the thickness deep.
+    const auto same = mag::findOverlaps(two(w, magnet("v", washer, Vec3::Zero(), Vec3(0, 0, 1))));
+    REQUIRE(same.size() == 1);
+    CHECK(same[0].depth == Approx(0.0005).epsilon(1e-9));
+    // Identical paperclips (0.9 mm wire) at one place: a point of the wire, at
+    // most its radius deep.
+    const auto clip = mag::makeShape(mag::makePaperclip(), mag::ShapeKind{});
+    const auto clips = mag::findOverlaps(two(magnet("c", clip, Vec3::Zero(), Vec3(1, 0, 0)),
+                                             magnet("d", clip, Vec3::Zero(), Vec3(1, 0, 0))));
+    REQUIRE(clips.size() == 1);
+    CHECK(clips[0].depth > 0.0002);
+    CHECK(clips[0].depth <= 0.00045);
 }
 
 // surfaceGap of two bars crossed one above the other: their closest points lie

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <utility>
 
 namespace mag {
@@ -22,6 +23,43 @@ std::vector<Vec3> verticesIn(const Body& a, const Body& b) {
     return v;
 }
 
+// A point inside a closed mesh (body frame): its centre of mass (the origin)
+// where that lies inside, as for any convex body; else, for a ring, a washer or
+// a paperclip whose centre of mass is in empty space (where another body may
+// pass without touching), the middle of the chord from the largest triangle's
+// centroid inward to the next surface. nullopt if neither is inside.
+std::optional<Vec3> interiorPoint(const SurfaceMesh& mesh) {
+    if (windingNumber(mesh, Vec3::Zero()) >= 0.5) return Vec3::Zero();
+    int largest = -1;
+    for (int t = 0; t < mesh.nTriangles(); ++t)
+        if (largest < 0 || mesh.area(t) > mesh.area(largest)) largest = t;
+    if (largest < 0 || mesh.area(largest) <= 0) return std::nullopt;
+    const Vec3 origin = (mesh.corner(largest, 0) + mesh.corner(largest, 1) + mesh.corner(largest, 2)) / 3.0;
+    const Vec3 dir = -mesh.normal(largest);
+    // Nearest crossing of the ray origin + s dir, s > 0, with another triangle
+    // (Moller-Trumbore).
+    double nearest = std::numeric_limits<double>::infinity();
+    for (int t = 0; t < mesh.nTriangles(); ++t) {
+        if (t == largest) continue;
+        const Vec3 &a = mesh.corner(t, 0), e1 = mesh.corner(t, 1) - a, e2 = mesh.corner(t, 2) - a;
+        const Vec3 p = dir.cross(e2);
+        const double det = e1.dot(p);
+        if (std::abs(det) <= 1e-300) continue;
+        const Vec3 q = origin - a;
+        const double u = q.dot(p) / det;
+        if (u < 0 || u > 1) continue;
+        const Vec3 r = q.cross(e1);
+        const double v = dir.dot(r) / det;
+        if (v < 0 || u + v > 1) continue;
+        const double s = e2.dot(r) / det;
+        if (s > 0) nearest = std::min(nearest, s);
+    }
+    if (!std::isfinite(nearest)) return std::nullopt;
+    const Vec3 mid = origin + 0.5 * nearest * dir;
+    if (windingNumber(mesh, mid) < 0.5) return std::nullopt;
+    return mid;
+}
+
 // Deepest vertex or face centroid of `in` inside `shell` by more than tol (0 if
 // none). Centroids catch boxes that overlap with their corners on each other's
 // edges (stacked too close, sides aligned), where every vertex is on the surface.
@@ -30,9 +68,12 @@ double deepestInside(const Body& in, const Body& shell, double tol) {
     std::vector<Vec3> probes = verticesIn(in, shell);
     for (const auto& t : in.shape->mesh.triangles)
         probes.push_back((probes[t[0]] + probes[t[1]] + probes[t[2]]) / 3.0);
-    // And its centre of mass (the origin of its body frame): two identical bodies
-    // at the same place have every vertex and centroid on the other's surface.
-    probes.push_back(shell.orientation.inverse() * (in.position - shell.position));
+    // And a point inside it: two identical bodies at the same place have every
+    // vertex and centroid on the other's surface.
+    if (const std::optional<Vec3> inner = interiorPoint(in.shape->mesh))
+        probes.push_back(shell.orientation.toRotationMatrix().transpose() *
+                             (in.orientation.toRotationMatrix() * *inner) +
+                         shell.orientation.inverse() * (in.position - shell.position));
     double deepest = 0;
     for (const Vec3& p : probes) {
         if (windingNumber(mesh, p) < 0.5) continue;  // outside

@@ -14,19 +14,21 @@ namespace mag {
 
 struct BodyOverlap {
     std::size_t a, b;  // indices, a < b
-    // Deepest vertex, face centroid or centre of mass of one body inside the
+    // Deepest vertex, face centroid or inner point of one body inside the
     // other (m; its distance to the other's surface); 0 when only edges cross faces.
     double depth;
 };
 
 // Pairs whose world meshes interpenetrate by more than tol = relTol * max(R_a,
-// R_b) (bounding radii): a vertex or face centroid of one inside the other
-// (winding number) and farther than tol from its surface (its centre of mass
-// too: identical bodies at one place), or an edge of one crossing a face of the
-// other with both ends and the crossing point more than tol from the face's
-// plane and edges. Bodies that touch (a vertex on a face, faces flush) are not
-// reported. Cost: vertices x triangles for each pair whose bounding spheres
-// overlap; meant for the start of a run.
+// R_b) (bounding radii): a vertex, face centroid or inner point of one inside
+// the other (winding number) and farther than tol from its surface, or an edge
+// of one crossing a face of the other with both ends and the crossing point
+// more than tol from the face's plane and edges. The inner point catches
+// identical bodies at one place: the centre of mass, or where that lies in
+// empty space (a ring, a washer, a paperclip, through which another body may
+// pass untouched) a point of the material. Bodies that touch (a vertex on a
+// face, faces flush) are not reported. Cost: vertices x triangles for each
+// pair whose bounding spheres overlap; meant for the start of a run.
 std::vector<BodyOverlap> findOverlaps(const std::vector<Body>& bodies, double relTol = 1e-6);
 
 // Smallest distance between the surfaces of two bodies in their current
