@@ -76,7 +76,7 @@ TEST_CASE("sleeping: a resting magnet sleeps, a dropped one wakes it, both end a
     INFO(log);
     // In this order: the cube sleeps, is woken by the approach, the stack sleeps.
     const auto first = log.find("asleep: cube\n");
-    const auto woken = log.find("woken: cube (the magnetic wrench on 'cube' changed)");
+    const auto woken = log.find("woken: cube (the magnetic wrench on 'cube' changed by ");
     const auto both = log.find("asleep: cube, dropped");
     REQUIRE(first != std::string::npos);
     REQUIRE(woken != std::string::npos);
@@ -101,6 +101,62 @@ TEST_CASE("sleeping: a resting magnet sleeps, a dropped one wakes it, both end a
     }
     CHECK(s.at("cube").z == Approx(0.007).margin(1e-5));     // on the disc (4 mm + 3 mm)
     CHECK(s.at("dropped").z == Approx(0.013).margin(1e-5));  // on the cube
+}
+
+TEST_CASE("sleeping: islands of touching bodies, and a contact wakes a sleeping body", "[sleeping]") {
+    // The cube comes to rest on the disc and sleeps while a ball of brass
+    // (no magnetization: only a contact can tell the cube it is there) still
+    // rolls by within reach of the bounding spheres; then a small brass cube falls
+    // onto the sleeping cube. With islands of touching bodies (the default)
+    // the cube sleeps first, alone: it touches only the fixed disc, and the
+    // ball rolling by does not touch it. The falling cube's contact wakes it,
+    // and the two fall asleep together. With islands of bounding
+    // spheres (margin 4: the rolling ball's reach) the cube waits for the ball.
+    // The small cube is dropped above where the magnet comes to rest
+    // (x -0.5 mm, y -2.2 mm, turned 23 degrees: its path from the tilted start).
+    const std::string balls =
+        "  - {name: rolling, geometry: {sphere: {radius: 0.004}}, material: brass, magnetization: [0, 0, 1],\n"
+        "     position: [0.02, -0.01, 0.004],\n"
+        "     velocity: [0, 0.05, 0]}\n"
+        "  - {name: falling, geometry: {box: {size: [0.003, 0.003, 0.003]}}, material: brass,\n"
+        "     magnetization: [0, 0, 1], position: [-0.0005, -0.0022, 0.3]}\n";
+    const auto run = [&](magtest::TempCase& c, const std::string& sleep) {
+        stack(c, 0.4, sleep);        // controls and schemes of the stack scene,
+        c.dropMagnet(balls, sleep);  // the balls instead of its second cube
+        c.write("constant/materials.yaml",
+                "N42: {model: permanent, Br: 1.3, density: 7500}\nbrass: {model: permanent, Br: 0, density: 8500}\n");
+        const int status = runIn(c.dir(), "log");
+        INFO(slurp(c.path("log")));
+        REQUIRE(status == 0);
+        return slurp(c.path("log"));
+    };
+    magtest::TempCase contacts, spheres;
+    const std::string log = run(contacts, "sleep: {}\n");
+    {
+        INFO(log);
+        const auto alone = log.find("asleep: cube\n");
+        const auto woken = log.find("(a contact woke 'cube')");
+        const auto together = log.find("asleep: cube, falling");
+        REQUIRE(alone != std::string::npos);
+        REQUIRE(woken != std::string::npos);
+        REQUIRE(together != std::string::npos);
+        CHECK(alone < woken);
+        CHECK(woken < together);
+        CHECK_THAT(log, Contains("0 warning(s)"));
+        const auto rows = lastRows(contacts.path("postProcessing/bodies.csv"));
+        for (const char* name : {"cube", "falling"}) {
+            INFO(name);
+            CHECK(rows.at(name).asleep == 1);
+            CHECK(rows.at(name).speed == 0.0);
+        }
+        CHECK(rows.at("falling").z > 0.01);  // it lies on the cube (top at 10 mm), not beside it
+    }
+    // The rolling ball stays within reach of the cube's bounding sphere (25 mm)
+    // to the end, never calm: with islands of bounding spheres it keeps the
+    // cube, and the small cube on it, awake.
+    const std::string sphereLog = run(spheres, "sleep: {islands: boundingSpheres, margin: 4}\n");
+    INFO(sphereLog);
+    CHECK(sphereLog.find("asleep: cube") == std::string::npos);
 }
 
 TEST_CASE("sleeping: a restart continues bit for bit, with bodies asleep and while they wake", "[sleeping][restart]") {

@@ -13,20 +13,6 @@ namespace mag::solver {
 
 namespace {
 
-// Union-find with path halving, for the islands.
-struct Sets {
-    std::vector<std::size_t> parent;
-    explicit Sets(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), std::size_t{0}); }
-    std::size_t find(std::size_t i) {
-        while (parent[i] != i) i = parent[i] = parent[parent[i]];
-        return i;
-    }
-    void unite(std::size_t a, std::size_t b) {
-        a = find(a), b = find(b);
-        if (a != b) parent[std::max(a, b)] = std::min(a, b);
-    }
-};
-
 std::string names(const std::vector<std::size_t>& island, const std::vector<Body>& bodies) {
     std::string out;
     for (std::size_t k = 0; k < island.size(); ++k) {
@@ -56,6 +42,20 @@ Wrench readWrench(const Dict& d) {
 
 } // namespace
 
+// Union-find with path halving, for the islands.
+struct Sleeping::Sets {
+    std::vector<std::size_t> parent;
+    explicit Sets(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), std::size_t{0}); }
+    std::size_t find(std::size_t i) {
+        while (parent[i] != i) i = parent[i] = parent[parent[i]];
+        return i;
+    }
+    void unite(std::size_t a, std::size_t b) {
+        a = find(a), b = find(b);
+        if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    }
+};
+
 Sleeping::Sleeping(const SleepSettings& settings, const std::vector<Body>& bodies, const Vec3& gravity,
                    bool timeDependentField)
     : settings_(settings), asleep_(bodies.size(), 0), calm_(bodies.size()), forceScale_(bodies.size(), 0),
@@ -78,6 +78,7 @@ const std::vector<Body>& Sleeping::awakeView(const std::vector<Body>& bodies) {
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         static_cast<BodyState&>(view_[i]) = bodies[i];
         view_[i].fixed = bodies[i].fixed || asleep_[i];
+        view_[i].held = !bodies[i].fixed && asleep_[i];
     }
     return view_;
 }
@@ -121,10 +122,28 @@ MagneticSystem::Step Sleeping::magnetic(const MagneticSystem& magnets, std::vect
     return s;
 }
 
-std::vector<std::vector<std::size_t>> Sleeping::islands(const std::vector<Body>& bodies) const {
+bool Sleeping::byContacts(const RigidBodyBackend& backend) {
+    if (settings_.islands != SleepSettings::Islands::contacts) return false;
+    if (backend.touching(touching_)) return true;
+    if (!fallbackNoted_)
+        spdlog::info("  sleeping: the rigid-body backend does not report contacts that wake a sleeping body: "
+                     "islands of bodies whose bounding spheres come near (sleep.islands: boundingSpheres)");
+    fallbackNoted_ = true;
+    return false;
+}
+
+std::vector<std::vector<std::size_t>> Sleeping::islands(const std::vector<Body>& bodies, bool byContacts) const {
+    const std::size_t n = bodies.size();
+    Sets sets(n);
+    if (byContacts) {
+        // The backend's contacts of the last step: bodies touching only fixed
+        // ones (the ground, a held magnet) are islands of their own.
+        for (const auto& [i, j] : touching_)
+            if (i < n && j < n && !bodies[i].fixed && !bodies[j].fixed) sets.unite(i, j);
+        return groups(bodies, sets);
+    }
     // Sort and sweep along x: a pair is tested only when the two reaches
     // overlap in x, so a scene of spread-out bodies costs n log n, not n^2.
-    const std::size_t n = bodies.size();
     auto reach = [&](std::size_t i) {
         const double r = bodies[i].shape->boundingRadius;
         return r + 0.5 * settings_.margin * r;
@@ -136,7 +155,6 @@ std::vector<std::vector<std::size_t>> Sleeping::islands(const std::vector<Body>&
         const double xa = bodies[a].position.x() - reach(a), xb = bodies[b].position.x() - reach(b);
         return xa < xb || (xa == xb && a < b);
     });
-    Sets sets(n);
     for (std::size_t k = 0; k < order.size(); ++k) {
         const std::size_t i = order[k];
         const double ri = bodies[i].shape->boundingRadius, right = bodies[i].position.x() + reach(i);
@@ -148,6 +166,11 @@ std::vector<std::vector<std::size_t>> Sleeping::islands(const std::vector<Body>&
             if ((bodies[i].position - bodies[j].position).squaredNorm() < d * d) sets.unite(i, j);
         }
     }
+    return groups(bodies, sets);
+}
+
+std::vector<std::vector<std::size_t>> Sleeping::groups(const std::vector<Body>& bodies, Sets& sets) {
+    const std::size_t n = bodies.size();
     std::vector<std::vector<std::size_t>> byRoot(n), out;
     for (std::size_t i = 0; i < n; ++i)
         if (!bodies[i].fixed) byRoot[sets.find(i)].push_back(i);
@@ -156,12 +179,22 @@ std::vector<std::vector<std::size_t>> Sleeping::islands(const std::vector<Body>&
     return out;
 }
 
-bool Sleeping::wrenchMoved(std::size_t i, const Wrench& w) const {
+std::vector<std::vector<std::size_t>> Sleeping::singletons(const std::vector<Body>& bodies) {
+    std::vector<std::vector<std::size_t>> out;
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+        if (!bodies[i].fixed) out.push_back({i});
+    return out;
+}
+
+double Sleeping::wrenchChange(std::size_t i, const Wrench& w) const {
     const Wrench& r = calm_[i].reference;
-    const double c = settings_.wrenchChange;
     const double f = std::max(r.force.norm(), forceScale_[i]);
     const double t = std::max(r.totalTorque().norm(), torqueScale_[i]);
-    return (w.force - r.force).norm() > c * f || (w.totalTorque() - r.totalTorque()).norm() > c * t;
+    return std::max((w.force - r.force).norm() / f, (w.totalTorque() - r.totalTorque()).norm() / t);
+}
+
+bool Sleeping::wrenchMoved(std::size_t i, const Wrench& w) const {
+    return wrenchChange(i, w) > settings_.wrenchChange;
 }
 
 void Sleeping::wake(const std::vector<std::size_t>& island, std::vector<Body>& bodies, const std::string& why,
@@ -183,7 +216,13 @@ void Sleeping::wake(const std::vector<std::size_t>& island, std::vector<Body>& b
 void Sleeping::wakeBeforeStep(std::vector<Body>& bodies, const std::vector<Wrench>& wrenches,
                               RigidBodyBackend& backend, long step, double t) {
     if (!settings_.enabled || !anyAsleep()) return;
-    for (const auto& island : islands(bodies)) {
+    // Islands of touching bodies: a sleeping body's own wrench or
+    // magnetization wakes it; those it rests on or under wake as the backend
+    // finds them touching a moving body (after the step). An awake body
+    // comes near only by touching: the backend's contact wakes the island.
+    const bool contacts = byContacts(backend);
+    const auto groups = contacts ? singletons(bodies) : islands(bodies, false);
+    for (const auto& island : groups) {
         const auto sleeping = std::count_if(island.begin(), island.end(), [&](std::size_t i) { return asleep_[i]; });
         if (sleeping == 0) continue;
         std::string why;
@@ -193,7 +232,9 @@ void Sleeping::wakeBeforeStep(std::vector<Body>& bodies, const std::vector<Wrenc
         }
         for (std::size_t k = 0; k < island.size() && why.empty(); ++k) {
             const std::size_t i = island[k];
-            if (wrenchMoved(i, wrenches[i])) why = "the magnetic wrench on '" + bodies[i].name + "' changed";
+            if (wrenchMoved(i, wrenches[i]))
+                why = fmt::format("the magnetic wrench on '{}' changed by {:.2g} of its scale", bodies[i].name,
+                                  wrenchChange(i, wrenches[i]));
             const Vec3& M0 = calm_[i].magnetization;
             if (why.empty() && (bodies[i].magnetizationBody - M0).norm() > settings_.wrenchChange * M0.norm())
                 why = "the magnetization of '" + bodies[i].name + "' changed";
@@ -206,7 +247,7 @@ void Sleeping::wakeBeforeStep(std::vector<Body>& bodies, const std::vector<Wrenc
 void Sleeping::sleepAfterStep(std::vector<Body>& bodies, const std::vector<Wrench>& wrenches,
                               RigidBodyBackend& backend, double dt, long step, double t) {
     if (!settings_.enabled) return;
-    const auto groups = islands(bodies);
+    const auto groups = islands(bodies, byContacts(backend));
     // What a contact woke (the backend holds the body no more).
     if (anyAsleep()) {
         const std::vector<char> held = backend.sleeping();

@@ -2,10 +2,13 @@
 // auto-disable do it, for the magnetic part too. A dynamic body is calm while
 // its speed (and the speed its surface turns at) stays below `speed` and its
 // magnetic wrench stays within `wrenchChange` of what it was when the calm
-// began. Islands of bodies near each other (bounding spheres within `margin`
-// of touching) fall asleep together, once every member has been calm for
-// `time` seconds: their velocities are set to zero and the rigid-body backend
-// holds them still.
+// began. Islands of bodies fall asleep together, once every member has been
+// calm for `time` seconds: their velocities are set to zero and the
+// rigid-body backend holds them still. An island is what touched in the last
+// step (`islands: contacts`, the default, where the backend reports its
+// contacts and a contact wakes a sleeping body: ODE), or what lies near
+// (bounding spheres within `margin` of touching: `boundingSpheres`, and the
+// other backends).
 //
 // The magnetic cost: pairs of two sleeping bodies, or of a sleeping and a
 // fixed one, keep the wrench they had when the set of sleeping bodies last
@@ -15,12 +18,13 @@
 //   every step) moves more than `wrenchChange` away from its value at the
 //   moment it fell asleep (a neighbour moves, comes or goes),
 // - its magnetization changes by more than `wrenchChange` (soft bodies),
-// - an awake body comes within `margin` of its island (contact ahead), or
+// - an awake body comes within `margin` of its island (contact ahead;
+//   boundingSpheres only), or
 // - the backend reports that a contact woke it.
 // With an applied field that changes in time nothing sleeps.
 //
 // Settings: constant/rigidBody.yaml `sleep: {enabled, speed, time,
-// wrenchChange, margin}` (SleepSettings.hpp, read with the case;
+// wrenchChange, islands, margin}` (SleepSettings.hpp, read with the case;
 // docs/case-reference.md#rigidbody). The state (who
 // sleeps, calm times, reference wrenches) is written to <time>/sleep.yaml so
 // that a restart continues bit for bit.
@@ -79,7 +83,16 @@ private:
         Wrench reference;          // wrench when the calm began, or when it fell asleep
         Vec3 magnetization = Vec3::Zero();  // body frame, when it fell asleep
     };
-    std::vector<std::vector<std::size_t>> islands(const std::vector<Body>& bodies) const;
+    struct Sets;
+    // Islands of dynamic bodies: touching in the backend's last step
+    // (byContacts), or with bounding spheres within `margin`.
+    bool byContacts(const RigidBodyBackend& backend);
+    std::vector<std::vector<std::size_t>> islands(const std::vector<Body>& bodies, bool byContacts) const;
+    static std::vector<std::vector<std::size_t>> groups(const std::vector<Body>& bodies, Sets& sets);
+    static std::vector<std::vector<std::size_t>> singletons(const std::vector<Body>& bodies);
+    // The change of body i's wrench from its reference, relative to the
+    // larger of the reference and m g (force) or m g R (torque).
+    double wrenchChange(std::size_t i, const Wrench& w) const;
     bool wrenchMoved(std::size_t i, const Wrench& w) const;
     void wake(const std::vector<std::size_t>& island, std::vector<Body>& bodies, const std::string& why, long step,
               double t);
@@ -92,6 +105,8 @@ private:
     std::vector<Wrench> frozen_;  // cached pairs among sleeping and fixed bodies
     bool frozenValid_ = false;
     bool changed_ = false;        // who sleeps changed: tell the backend
+    std::vector<std::pair<std::size_t, std::size_t>> touching_;  // the backend's touching pairs
+    bool fallbackNoted_ = false;
     long sleepEvents_ = 0, wakeEvents_ = 0, pairsSkipped_ = 0, pairsEvaluated_ = 0;
 };
 

@@ -76,6 +76,11 @@ struct BodyModel {
     std::shared_ptr<const Shape> shape;
     Material material;
     bool fixed = false;
+    // A dynamic body that a view of the scene marks fixed for now (a sleeping
+    // one, docs/dynamics.md#sleeping): its pairs are skipped like a fixed
+    // body's, but each pair keeps the orientation it has while the body moves
+    // (FieldEvaluator::orientedPair), so its wrench is the same either way.
+    bool held = false;
     std::shared_ptr<const Compound> compound;  // null for a body of one part
     // Parts of one compound body, as the field models see them, share a
     // nonzero group: their pairs exert no net force on the body and are left

@@ -11,6 +11,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace mag {
@@ -54,6 +55,12 @@ public:
     virtual void setSleeping(std::vector<Body>& /*bodies*/, const std::vector<char>& /*asleep*/) {}
     // Which bodies rest now (empty: none, or no sleeping).
     virtual std::vector<char> sleeping() const { return {}; }
+    // The pairs of dynamic bodies (indices into `bodies`, i < j, each once)
+    // that touched in the last step(), for islands of touching bodies
+    // (`sleep: {islands: contacts}`). Only for a backend whose contact with a
+    // moving body wakes a sleeping one (reported by sleeping()); false (the
+    // default): islands by bounding spheres instead.
+    virtual bool touching(std::vector<std::pair<std::size_t, std::size_t>>& /*pairs*/) const { return false; }
 
     // Implicit magnetic tilt stiffness (controlDict magneticStiffness:
     // implicit, docs/dynamics.md#large-steps): for the next step() only, each

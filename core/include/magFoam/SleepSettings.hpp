@@ -13,7 +13,13 @@ struct SleepSettings {
     double speed = 1e-3;         // m/s: calm below (centre and surface)
     double time = 0.02;          // s: calm this long before sleeping
     double wrenchChange = 1e-3;  // relative change of the magnetic wrench (and magnetization)
-    double margin = 0.1;         // islands: bounding spheres closer than margin x the smaller radius
+    // Who sleeps together: bodies the backend found touching in the last step
+    // (contacts, as Bullet's and ODE's islands), or bodies whose bounding
+    // spheres come within `margin` (boundingSpheres; also the fallback of a
+    // backend that cannot report its contacts).
+    enum class Islands { contacts, boundingSpheres };
+    Islands islands = Islands::contacts;
+    double margin = 0.1;         // boundingSpheres: closer than margin x the smaller radius
 
     // `sleep:` of constant/rigidBody.yaml (absent: disabled; `sleep: {}`: the
     // defaults); InputError naming the key for a bad value.

@@ -466,6 +466,7 @@ public:
 
         const int n = subStepsFor(wrenches, dt);
         stats_.steps += 1, stats_.subSteps += n;
+        touching_.clear();
         const double h = dt / n;
         // One-shot: the stiffness set for this step (setTiltStiffness).
         const std::vector<Mat3> stiffness = std::exchange(stiffness_, {});
@@ -619,6 +620,12 @@ public:
                 dBodyEnable(body);
             }
         }
+    }
+    bool touching(std::vector<std::pair<std::size_t, std::size_t>>& pairs) const override {
+        pairs = touching_;
+        std::sort(pairs.begin(), pairs.end());
+        pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+        return true;
     }
     std::vector<char> sleeping() const override {
         std::lock_guard lock(odeMutex());
@@ -863,6 +870,10 @@ private:
         const dJointID id = dJointCreateContact(world_, group_, &joint);
         dJointAttach(id, b1, b2);
         if ((frictionBounds_ && s_.friction > 0) || rolling_) made_.push_back({joint, b1, b2, id, {}, 0, false});
+        if (b1 && b2) {
+            const std::size_t i = entryOf(b1), j = entryOf(b2);
+            touching_.emplace_back(std::min(i, j), std::max(i, j));
+        }
     }
 
     // The contact joints of this sub-step, with ODE's answer (feedback; its
@@ -876,6 +887,8 @@ private:
         bool starved;
     };
     std::vector<Made> made_; // cleared every sub-step, its storage kept
+    // Pairs of dynamic bodies joined by a contact in the last step (touching()).
+    std::vector<std::pair<std::size_t, std::size_t>> touching_;
     // resistRolling's touching pairs and torques per entry (storage kept).
     struct Pair {
         dBodyID b1, b2;
