@@ -251,6 +251,26 @@ TEST_CASE("compound: a soft part is magnetized by the other parts of its body", 
           1e-10 * std::abs(b.magneticEnergy(two, b.wrenches(two))));
 }
 
+TEST_CASE("compound: a held body's parts are held, and keep their pairs' orientation", "[compound][sleeping]") {
+    // A sleeping body is fixed and held in the solver's view (Body::held,
+    // docs/dynamics.md#sleeping); its parts must be too, or their pairs with
+    // moving bodies turn round and the wrench changes with the rule's error.
+    const std::string field = "type: MBM\nquadrature: {type: regular, n: 1}";
+    mag::Body holder = compound("holder",
+                                {part(boxShape(cube), N42, Vec3::Zero()), part(boxShape(cube), N42, Vec3(0.01, 0, 0))},
+                                {Vec3(0, 0, 1.3 / mag::mu0), Vec3(0, 0, 1.3 / mag::mu0)}, Vec3::Zero());
+    const std::vector<mag::Body> moving = {holder, cubeMagnet("probe", Vec3(0.004, 0.002, 0.0105), 1.3)};
+    std::vector<mag::Body> held = moving;
+    held[0].fixed = held[0].held = true;
+    const mag::PartBodies view(held);
+    for (const mag::Body& p : view.parts)
+        if (p.name.starts_with("holder/")) CHECK(p.held);
+    const mag::MagneticSystem m = magnetsOf(field, "type: none");
+    const std::vector<mag::Wrench> a = m.wrenches(moving), b = m.wrenches(held, true);
+    CHECK(b[1].force == a[1].force);
+    CHECK(b[1].totalTorque() == a[1].totalTorque());
+}
+
 namespace {
 
 void writeDropCase(magtest::TempCase& c, const std::string& body, double endTime = 0.25) {

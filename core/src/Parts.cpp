@@ -71,6 +71,7 @@ Body PartBodies::part(const Body& owner, std::size_t k, std::uint32_t group) {
     b.shape = p.shape;
     b.material = p.material;
     b.fixed = owner.fixed;
+    b.held = owner.held;
     b.group = group;
     b.magnetizationBody = owner.partMagnetization[k];
     b.position = owner.toWorld(p.position);
