@@ -187,6 +187,9 @@ TEST_CASE("sleeping: bad settings are errors naming the key", "[sleeping][badInp
     stack(c, 0.01, "sleep: {enabled: true, speeed: 1}\n");
     REQUIRE(runIn(c.dir(), "log") == 1);
     CHECK_THAT(slurp(c.path("log")), Contains("unknown key 'speeed'") && Contains("speed"));
+    stack(c, 0.01, "sleep: {islands: touching}\n");
+    REQUIRE(runIn(c.dir(), "log") == 1);
+    CHECK_THAT(slurp(c.path("log")), Contains("sleep.islands: unknown 'touching': expected contacts or boundingSpheres"));
 }
 
 TEST_CASE("sleeping: a soft part resting on a magnet sleeps and stays asleep", "[sleeping][induction]") {
