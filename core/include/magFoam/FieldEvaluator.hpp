@@ -122,9 +122,10 @@ public:
 
     // How addWrenches() evaluates the pair i < j: interaction(source, target)
     // with the body that moves sampled (a fixed body needs no wrench of its
-    // own; a held one, Body::held, counts as moving), otherwise target j. The pair's energy comes from the target's
-    // samples, so an induction model that wants the response of either body
-    // to be stationary for that energy asks in this orientation.
+    // own; a held one, Body::held, counts as moving), otherwise target j.
+    // The pair's energy comes from the target's samples, so an induction
+    // model that wants the response of either body to be stationary for
+    // that energy asks in this orientation.
     static BodyPair orientedPair(std::span<const Body> bodies, std::size_t i, std::size_t j) {
         const bool fi = bodies[i].fixed && !bodies[i].held, fj = bodies[j].fixed && !bodies[j].held;
         return fj && !fi ? BodyPair{j, i} : BodyPair{i, j};

@@ -622,6 +622,7 @@ public:
         }
     }
     bool touching(std::vector<std::pair<std::size_t, std::size_t>>& pairs) const override {
+        std::lock_guard lock(odeMutex());
         pairs = touching_;
         std::sort(pairs.begin(), pairs.end());
         pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
