@@ -179,13 +179,6 @@ std::vector<std::vector<std::size_t>> Sleeping::groups(const std::vector<Body>& 
     return out;
 }
 
-std::vector<std::vector<std::size_t>> Sleeping::singletons(const std::vector<Body>& bodies) {
-    std::vector<std::vector<std::size_t>> out;
-    for (std::size_t i = 0; i < bodies.size(); ++i)
-        if (!bodies[i].fixed) out.push_back({i});
-    return out;
-}
-
 double Sleeping::wrenchChange(std::size_t i, const Wrench& w) const {
     const Wrench& r = calm_[i].reference;
     const double f = std::max(r.force.norm(), forceScale_[i]);
@@ -213,33 +206,42 @@ void Sleeping::wake(const std::vector<std::size_t>& island, std::vector<Body>& b
     spdlog::info("step {} (t = {:.6g} s): woken: {} ({})", step, t, names(island, bodies), why);
 }
 
+std::string Sleeping::wakeReason(std::size_t i, const std::vector<Body>& bodies, const Wrench& w) const {
+    if (const double c = wrenchChange(i, w); c > settings_.wrenchChange)
+        return fmt::format("the magnetic wrench on '{}' changed by {:.2g} of its scale", bodies[i].name, c);
+    const Vec3& M0 = calm_[i].magnetization;
+    if ((bodies[i].magnetizationBody - M0).norm() > settings_.wrenchChange * M0.norm())
+        return "the magnetization of '" + bodies[i].name + "' changed";
+    return {};
+}
+
 void Sleeping::wakeBeforeStep(std::vector<Body>& bodies, const std::vector<Wrench>& wrenches,
                               RigidBodyBackend& backend, long step, double t) {
     if (!settings_.enabled || !anyAsleep()) return;
-    // Islands of touching bodies: a sleeping body's own wrench or
-    // magnetization wakes it; those it rests on or under wake as the backend
-    // finds them touching a moving body (after the step). An awake body
-    // comes near only by touching: the backend's contact wakes the island.
-    const bool contacts = byContacts(backend);
-    const auto groups = contacts ? singletons(bodies) : islands(bodies, false);
-    for (const auto& island : groups) {
-        const auto sleeping = std::count_if(island.begin(), island.end(), [&](std::size_t i) { return asleep_[i]; });
-        if (sleeping == 0) continue;
-        std::string why;
-        if (static_cast<std::size_t>(sleeping) < island.size()) {
-            const auto awake = *std::find_if(island.begin(), island.end(), [&](std::size_t i) { return !asleep_[i]; });
-            why = "'" + bodies[awake].name + "' came near";
+    if (byContacts(backend)) {
+        // Islands of touching bodies: a sleeping body's own wrench or
+        // magnetization wakes it alone; those it rests on or under wake as
+        // the backend finds them touching a moving body (after the step),
+        // and an awake body comes near only by touching.
+        for (std::size_t i = 0; i < bodies.size(); ++i)
+            if (asleep_[i])
+                if (const std::string why = wakeReason(i, bodies, wrenches[i]); !why.empty())
+                    wake({i}, bodies, why, step, t);
+    } else {
+        for (const auto& island : islands(bodies, false)) {
+            const auto sleeping =
+                std::count_if(island.begin(), island.end(), [&](std::size_t i) { return asleep_[i]; });
+            if (sleeping == 0) continue;
+            std::string why;
+            if (static_cast<std::size_t>(sleeping) < island.size()) {
+                const auto awake =
+                    *std::find_if(island.begin(), island.end(), [&](std::size_t i) { return !asleep_[i]; });
+                why = "'" + bodies[awake].name + "' came near";
+            }
+            for (std::size_t k = 0; k < island.size() && why.empty(); ++k)
+                why = wakeReason(island[k], bodies, wrenches[island[k]]);
+            if (!why.empty()) wake(island, bodies, why, step, t);
         }
-        for (std::size_t k = 0; k < island.size() && why.empty(); ++k) {
-            const std::size_t i = island[k];
-            if (wrenchMoved(i, wrenches[i]))
-                why = fmt::format("the magnetic wrench on '{}' changed by {:.2g} of its scale", bodies[i].name,
-                                  wrenchChange(i, wrenches[i]));
-            const Vec3& M0 = calm_[i].magnetization;
-            if (why.empty() && (bodies[i].magnetizationBody - M0).norm() > settings_.wrenchChange * M0.norm())
-                why = "the magnetization of '" + bodies[i].name + "' changed";
-        }
-        if (!why.empty()) wake(island, bodies, why, step, t);
     }
     if (changed_) backend.setSleeping(bodies, asleep_), changed_ = false;
 }

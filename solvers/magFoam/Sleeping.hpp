@@ -89,11 +89,12 @@ private:
     bool byContacts(const RigidBodyBackend& backend);
     std::vector<std::vector<std::size_t>> islands(const std::vector<Body>& bodies, bool byContacts) const;
     static std::vector<std::vector<std::size_t>> groups(const std::vector<Body>& bodies, Sets& sets);
-    static std::vector<std::vector<std::size_t>> singletons(const std::vector<Body>& bodies);
     // The change of body i's wrench from its reference, relative to the
     // larger of the reference and m g (force) or m g R (torque).
     double wrenchChange(std::size_t i, const Wrench& w) const;
     bool wrenchMoved(std::size_t i, const Wrench& w) const;
+    // Why sleeping body i wakes (its wrench or magnetization moved), or empty.
+    std::string wakeReason(std::size_t i, const std::vector<Body>& bodies, const Wrench& w) const;
     void wake(const std::vector<std::size_t>& island, std::vector<Body>& bodies, const std::string& why, long step,
               double t);
 
